@@ -1,0 +1,427 @@
+"""Discrete plane curves, following §3 of the lecture (Vouga, *Plane Curves*).
+
+Conventions (the lecture's, see the book's chapter on notation):
+
+* ``J`` rotates by +90 degrees: ``J(x, y) = (-y, x)``; normals are ``N = J T``.
+* A curve traversed **clockwise** has positive curvature and outward normals.
+* ``edges[i]`` is ``e_{i+1/2} = v_{i+1} - v_i``; for a closed curve indices are taken modulo ``n``.
+* ``turning_angles[i]`` is ``psi_i``, the clockwise turning angle from ``e_{i-1/2}`` to
+  ``e_{i+1/2}``, in ``(-pi, pi]``.
+
+Every quantity is computed once, on first use, with vectorized numpy (no loop over vertices).
+"""
+
+from __future__ import annotations
+
+from functools import cached_property
+
+import numpy as np
+
+CURVATURES = ("angle", "sine", "tangent")
+"""The three discrete curvatures of the lecture: equations (1), (3) and (4)."""
+
+INFLATIONS = ("minkowski", "offset")
+"""The lecture's two inflations (§3.4): disk sectors at the vertices, or parallel edges with kites."""
+
+MAX_ARC_STEP = 0.01
+"""Largest angle (radians) between two samples of a Minkowski arc in :meth:`DiscreteCurve.inflate`.
+
+A chord of angle ``h`` misses ``h**2 / 6`` of its sector's area (relatively), so arcs sampled this
+finely lose less than 2e-5 of the area the formula counts."""
+
+
+def _choose(value, valid, what):
+    if value not in valid:
+        raise ValueError(f"unknown {what} {value!r}; choose one of {', '.join(map(repr, valid))}")
+    return value
+
+
+def _cross(a, b):
+    """z-component of the cross product of rows of ``a`` and ``b`` (counter-clockwise positive)."""
+    return a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+
+
+def _dot(a, b):
+    return a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1]
+
+
+def _J(u):
+    """Rotate each row of ``u`` by +90 degrees: ``J(x, y) = (-y, x)``."""
+    return np.stack([-u[:, 1], u[:, 0]], axis=1)
+
+
+class DiscreteCurve:
+    """A discrete curve ``Gamma = (v_0, ..., v_{n-1})`` (lecture §3).
+
+    Parameters
+    ----------
+    vertices : array-like of shape ``(n, 2)``
+        The vertices ``v_i``. The curve keeps its own read-only float copy.
+    closed : bool
+        ``True`` (default): the edge ``e_{n-1/2}`` from the last vertex back to the first is
+        implied, so do not repeat the first vertex at the end. ``False``: an open polyline; the
+        turning angle (hence every curvature) is defined only at the interior vertices
+        ``v_1 ... v_{n-2}``, and the quantities that need a closed curve (turning number, area,
+        inflation) raise ``ValueError``.
+
+    Raises
+    ------
+    ValueError
+        For a shape other than ``(n, 2)``, NaN or infinite coordinates, too few vertices, or two
+        consecutive equal vertices (the lecture requires ``v_{i+1} != v_i``). The message names
+        the vertex.
+    """
+
+    def __init__(self, vertices, closed=True):
+        v = np.array(vertices, dtype=float, copy=True)
+        if v.ndim != 2 or v.shape[1] != 2:
+            raise ValueError(f"vertices must have shape (n, 2), got shape {v.shape}")
+        self.closed = bool(closed)
+        n = len(v)
+        minimum = 3 if self.closed else 2
+        if n < minimum:
+            kind = "a closed" if self.closed else "an open"
+            raise ValueError(f"{kind} discrete curve needs at least {minimum} vertices, got {n}")
+        v.flags.writeable = False
+        self._v = v
+        lengths = self.edge_lengths
+        if not np.isfinite(self.length):  # a NaN or inf coordinate reaches the length: locate it
+            bad = np.flatnonzero(~np.isfinite(v).all(axis=1))
+            if len(bad):
+                raise ValueError(f"vertex {bad[0]} has a NaN or infinite coordinate: {v[bad[0]]}")
+            raise ValueError("the coordinates are too large: the curve's length overflows")
+        if lengths.min() == 0.0:
+            i = int(np.argmin(lengths))
+            j = (i + 1) % n
+            if self.closed and i == n - 1:
+                raise ValueError(
+                    f"the last vertex {i} repeats the first vertex 0 ({v[0]}); a closed curve's "
+                    "closing edge is implied, so leave the repeated vertex out"
+                )
+            raise ValueError(
+                f"vertices {i} and {j} are equal ({v[i]}); consecutive vertices must differ"
+            )
+
+    def __len__(self):
+        return len(self._v)
+
+    def __repr__(self):
+        kind = "closed" if self.closed else "open"
+        return f"DiscreteCurve(n={len(self)}, {kind}, length={self.length:.6g})"
+
+    def _require_closed(self, what):
+        if not self.closed:
+            raise ValueError(f"{what} is defined for closed curves only; this curve is open")
+
+    # ------------------------------------------------------------------ edges (lecture §3)
+
+    @property
+    def vertices(self):
+        """The vertices ``v_i``, shape ``(n, 2)``, read-only."""
+        return self._v
+
+    @cached_property
+    def _edge_buffers(self):
+        """Edge components and lengths ``(ex, ey, l)`` as contiguous arrays.
+
+        For a closed curve each buffer has ``n + 1`` entries, the last edge ``e_{n-1/2}`` repeated in
+        front, so that around vertex ``v_i`` the previous edge is ``buffer[i]`` and the next is
+        ``buffer[i + 1]`` for every ``i``: ``buffer[:-1]`` and ``buffer[1:]`` are the two edges
+        at each vertex, without copies. An open curve's buffers hold its ``n - 1`` edges.
+        """
+        v = self._v
+        w = 1 if self.closed else 0
+        ex, ey = np.empty(len(v) - 1 + 2 * w), np.empty(len(v) - 1 + 2 * w)
+        for out, column in ((ex, v[:, 0]), (ey, v[:, 1])):
+            np.subtract(column[1:], column[:-1], out=out[w : len(v) - 1 + w])
+            if self.closed:
+                out[0] = out[-1] = column[0] - column[-1]
+        length = ex * ex
+        length += ey * ey
+        np.sqrt(length, out=length)  # sqrt(x*x + y*y): several times cheaper than np.hypot
+        return ex, ey, length
+
+    @cached_property
+    def edges(self):
+        """Edge vectors: ``edges[i] = e_{i+1/2} = v_{i+1} - v_i``; ``n`` of them if closed, else ``n-1``."""
+        ex, ey, _ = self._edge_buffers
+        w = 1 if self.closed else 0
+        e = np.stack([ex[w:], ey[w:]], axis=1)
+        e.flags.writeable = False
+        return e
+
+    @cached_property
+    def edge_lengths(self):
+        """``|e_{i+1/2}|`` for each edge."""
+        lengths = self._edge_buffers[2][1:] if self.closed else self._edge_buffers[2].copy()
+        lengths.flags.writeable = False
+        return lengths
+
+    @cached_property
+    def length(self):
+        """Total arc length ``L = sum_i |e_{i+1/2}|`` (lecture §3)."""
+        return float(self.edge_lengths.sum())
+
+    @cached_property
+    def tangents(self):
+        """Unit edge tangents ``T_{i+1/2} = e_{i+1/2} / |e_{i+1/2}|``."""
+        return self.edges / self.edge_lengths[:, None]
+
+    @cached_property
+    def normals(self):
+        """Edge normals ``N_{i+1/2} = J T_{i+1/2}``: outward on a clockwise convex curve."""
+        return _J(self.tangents)
+
+    # ---------------------------------------------------------- vertices (lecture §3.1-3.2)
+
+    def _around_vertices(self, values):
+        """``(previous, next)`` edge values around each vertex where ``psi`` is defined."""
+        if self.closed:
+            return np.roll(values, 1, axis=0), values
+        return values[:-1], values[1:]
+
+    @cached_property
+    def _tan_half_psi(self):
+        """``tan(psi_i / 2)`` from the cross and dot products of the two edges at ``v_i``.
+
+        With ``a = e_{i-1/2}``, ``b = e_{i+1/2}``: ``|a||b| sin psi = -(a x b)`` (clockwise is
+        positive) and ``|a||b| cos psi = a . b``, so, trig-free,
+
+            tan(psi/2) = -(a x b) / (|a||b| + a . b) = (|a||b| - a . b) / -(a x b).
+
+        The first form is used where ``a . b >= 0`` and the second where the curve turns by more
+        than a right angle (each avoids cancellation in its half). ``psi = 2 arctan(tan(psi/2))``
+        then lies in ``(-pi, pi]``; where the curve turns straight back this is ``+inf`` (``psi = pi``).
+        """
+        ex, ey, length = self._edge_buffers
+        a, b = slice(None, -1), slice(1, None)  # previous and next edge at each vertex
+        dot = ex[a] * ex[b]
+        scratch = ey[a] * ey[b]  # one temporary, reused: fewer passes over fresh memory
+        dot += scratch
+        t = ey[a] * ex[b]
+        t -= np.multiply(ex[a], ey[b], out=scratch)  # t = -(a x b)
+        denominator = np.multiply(length[a], length[b], out=scratch)
+        denominator += dot
+        with np.errstate(divide="ignore", invalid="ignore"):  # 0 only where the second form applies
+            t /= denominator
+        if len(t) and dot.min() < 0.0:  # sharp turns: use the second form there
+            i = np.flatnonzero(dot < 0.0)
+            minus_cross = ey[a][i] * ex[b][i] - ex[a][i] * ey[b][i]
+            with np.errstate(divide="ignore"):
+                t[i] = (length[a][i] * length[b][i] - dot[i]) / minus_cross
+            t[i[minus_cross == 0.0]] = np.inf  # a reversal: psi = +pi, whatever the sign of zero
+        return t
+
+    @cached_property
+    def _reversals(self):
+        """Indices, into the per-vertex arrays, of the vertices where the curve turns straight back."""
+        t = self._tan_half_psi
+        if len(t) == 0 or t.max() < np.inf:  # one cheap pass in the usual case
+            return np.array([], dtype=int)
+        return np.flatnonzero(np.isposinf(t))
+
+    def _vertex_index(self, j):
+        """The vertex that entry ``j`` of a per-vertex array belongs to (open curves skip ``v_0``)."""
+        return int(j) + (0 if self.closed else 1)
+
+    @cached_property
+    def turning_angles(self):
+        """``psi_i``: clockwise turning angle at ``v_i`` from ``e_{i-1/2}`` to ``e_{i+1/2}``, in ``(-pi, pi]``.
+
+        Closed curve: one per vertex. Open curve: interior vertices only, so ``turning_angles[j]``
+        belongs to ``v_{j+1}``.
+        """
+        psi = np.arctan(self._tan_half_psi)
+        psi *= 2.0
+        psi.flags.writeable = False
+        return psi
+
+    @cached_property
+    def dual_lengths(self):
+        """``A_i = (|e_{i-1/2}| + |e_{i+1/2}|) / 2``, the length element at ``v_i`` (lecture §3).
+
+        On an open curve the end vertices get half of their single edge, so that ``<1, 1> = L``.
+        """
+        length = self._edge_buffers[2]
+        if self.closed:
+            A = length[:-1] + length[1:]
+        else:
+            A = np.zeros(len(self))
+            A[1:] += length
+            A[:-1] += length
+        A *= 0.5
+        A.flags.writeable = False
+        return A
+
+    @cached_property
+    def turning_number(self):
+        """``sum_i psi_i / (2 pi)``, an integer for every closed polygon (lecture §3.2)."""
+        self._require_closed("the turning number")
+        return int(round(float(self.turning_angles.sum()) / (2 * np.pi)))
+
+    @cached_property
+    def signed_area(self):
+        """Enclosed area, positive for a clockwise curve (the shoelace formula, sign flipped).
+
+        For a self-intersecting curve this is the winding-number-weighted area.
+        """
+        self._require_closed("the enclosed area")
+        v = self._v - self._v.mean(axis=0)  # centring avoids cancellation far from the origin
+        return float(-0.5 * _cross(v, np.roll(v, -1, axis=0)).sum())
+
+    def inner(self, F, G):
+        """Discrete inner product ``<F, G> = sum_i A_i F_i . G_i`` (lecture §3 and §3.3).
+
+        ``F`` and ``G`` are discrete functions: shape ``(n,)`` (scalar) or ``(n, 2)`` (vector).
+        """
+        F, G = np.asarray(F, dtype=float), np.asarray(G, dtype=float)
+        n = len(self)
+        for name, X in (("F", F), ("G", G)):
+            if X.shape not in ((n,), (n, 2)):
+                raise ValueError(
+                    f"{name} must be a discrete function with one value per vertex, shape ({n},) "
+                    f"or ({n}, 2); got shape {X.shape}"
+                )
+        if F.shape != G.shape:
+            raise ValueError(f"F and G must both be scalar or both vector: shapes {F.shape}, {G.shape}")
+        products = F * G if F.ndim == 1 else _dot(F, G)
+        return float(self.dual_lengths @ products)
+
+    # ------------------------------------------------------- curvature (lecture §3.2-3.4)
+
+    @cached_property
+    def _tangent_curvature(self):
+        """``2 tan(psi_i / 2) / A_i`` (eq. 4), ``inf`` where the curve turns straight back."""
+        k = self._tan_half_psi / (self.dual_lengths if self.closed else self.dual_lengths[1:-1])
+        k *= 2.0
+        return k
+
+    def curvature(self, kind="angle"):
+        """Discrete curvature ``k_i`` by one of the lecture's formulas (``ddg.CURVATURES``).
+
+        With ``2 A_i = |e_{i-1/2}| + |e_{i+1/2}|``:
+
+        * ``"angle"``:   ``k_i = 2 psi_i / (2 A_i)``          (eq. 1, from the winding number theorem)
+        * ``"sine"``:    ``k_i = 4 sin(psi_i/2) / (2 A_i)``   (eq. 3, from the gradient of length)
+        * ``"tangent"``: ``k_i = 4 tan(psi_i/2) / (2 A_i)``   (eq. 4, from offset inflation)
+
+        The tangent formula diverges where the curve turns straight back (``psi_i = pi``); there it
+        raises ``ValueError`` naming the vertex. Open curves: interior vertices ``v_1 ... v_{n-2}``.
+        """
+        _choose(kind, CURVATURES, "curvature kind")
+        cache = self.__dict__.setdefault("_curvatures", {})
+        if kind in cache:
+            return cache[kind]
+        t, reversals = self._tan_half_psi, self._reversals
+        A = self.dual_lengths if self.closed else self.dual_lengths[1:-1]
+        if kind == "tangent" and len(reversals):
+            raise ValueError(
+                f"the tangent curvature (eq. 4) diverges at vertex "
+                f"{self._vertex_index(reversals[0])}: the curve turns straight back there (psi = pi)"
+            )
+        if kind == "angle":
+            k = self.turning_angles / A
+        elif kind == "tangent":
+            k = self._tangent_curvature
+        else:  # sin(psi/2) = tan(psi/2) / sqrt(1 + tan^2(psi/2)): the tangent formula, rescaled
+            k = t * t
+            k += 1.0
+            np.sqrt(k, out=k)
+            with np.errstate(invalid="ignore"):  # inf / inf at reversals, fixed next
+                np.divide(self._tangent_curvature, k, out=k)
+            k[reversals] = 2.0 / A[reversals]  # where psi = pi, sin(psi/2) = 1
+        k.flags.writeable = False
+        cache[kind] = k
+        return k
+
+    def total_curvature(self, kind="angle"):
+        """``<k, 1> = sum_i A_i k_i`` over the vertices where ``k`` is defined."""
+        A = self.dual_lengths if self.closed else self.dual_lengths[1:-1]
+        return float(A @ self.curvature(kind))
+
+    def length_gradient(self):
+        """Gradient of length under the discrete inner product, shape ``(n, 2)`` (lecture §3.3).
+
+        ``(grad L)_j = (T_{j-1/2} - T_{j+1/2}) / A_j``, so that ``<grad L, delta> = D_delta L``
+        (eq. 2) for every variation ``delta``. Its length is the sine curvature (eq. 3). On an open
+        curve the end vertices have a single edge: ``(grad L)_0 = -T_{1/2} / A_0`` and
+        ``(grad L)_{n-1} = T_{n-3/2} / A_{n-1}``.
+        """
+        T = self.tangents
+        if self.closed:
+            g = np.roll(T, 1, axis=0) - T
+        else:
+            g = np.zeros((len(self), 2))
+            g[1:] += T
+            g[:-1] -= T
+        return g / self.dual_lengths[:, None]
+
+    # -------------------------------------------------------------- inflation (lecture §3.4)
+
+    def inflated_area(self, eps, method="minkowski"):
+        """Signed area of the curve inflated by ``eps`` along its normals (lecture §3.4).
+
+        * ``"minkowski"``: disk sectors of angle ``psi_i`` at the vertices:
+          ``A_0 + eps L + eps^2 / 2 * sum psi_i``.
+        * ``"offset"``: edges moved parallel by ``eps``, kites at the corners:
+          ``A_0 + eps L + eps^2 * sum tan(psi_i / 2)``.
+
+        These are the lecture's formulas; they are the true area of the inflated region when the
+        polygon is convex and clockwise. (For other curves, compare with :meth:`inflate`.)
+        """
+        _choose(method, INFLATIONS, "inflation method")
+        self._require_closed("inflation")
+        if method == "minkowski":
+            quadratic = 0.5 * float(self.turning_angles.sum())
+        else:
+            quadratic = 0.5 * self.total_curvature("tangent")
+        return self.signed_area + eps * self.length + eps * eps * quadratic
+
+    def inflate(self, eps, method="minkowski"):
+        """The boundary of the inflated region as a new closed :class:`DiscreteCurve`.
+
+        Every edge moves by ``eps`` along its normal ``N_{i+1/2}``. At vertex ``v_i`` the two moved
+        edges are joined by
+
+        * ``"minkowski"``: the arc of radius ``eps`` about ``v_i`` that turns clockwise by
+          ``psi_i``, sampled every :data:`MAX_ARC_STEP` radians at most;
+        * ``"offset"``: the corner where the two moved edges meet (the kite's outer vertex).
+
+        On a non-convex curve this boundary crosses itself near the reflex vertices.
+        """
+        _choose(method, INFLATIONS, "inflation method")
+        self._require_closed("inflation")
+        v, psi = self._v, self.turning_angles
+        N_prev, N_next = self._around_vertices(self.normals)
+        if method == "offset":
+            if len(self._reversals):
+                i = self._reversals[0]
+                raise ValueError(f"no offset corner at vertex {i}: the curve turns straight back there")
+            corner = (N_prev + N_next) / (1.0 + _dot(N_prev, N_next))[:, None]
+            return DiscreteCurve(v + eps * corner)
+        steps = np.ceil(np.abs(psi) / MAX_ARC_STEP).astype(int)  # arc segments per vertex
+        counts = steps + 1  # points per arc (one where psi = 0)
+        vertex = np.repeat(np.arange(len(v)), counts)
+        start = np.cumsum(counts) - counts
+        k = np.arange(counts.sum()) - np.repeat(start, counts)  # 0 ... steps_i along each arc
+        fraction = k / np.maximum(np.repeat(steps, counts), 1)
+        angle = np.arctan2(N_prev[:, 1], N_prev[:, 0])[vertex] - psi[vertex] * fraction
+        return DiscreteCurve(v[vertex] + eps * np.stack([np.cos(angle), np.sin(angle)], axis=1))
+
+
+def regular_polygon(n, radius=1.0, clockwise=True, center=(0.0, 0.0)):
+    """The regular ``n``-gon with its vertices on the circle of the given radius.
+
+    ``v_k = center + radius (cos(2 pi k / n), -sin(2 pi k / n))`` when clockwise. Its turning angles
+    are all ``2 pi / n`` (clockwise) and its edges have length ``2 r sin(pi / n)``.
+    """
+    if int(n) != n or n < 3:
+        raise ValueError(f"a regular polygon needs an integer n >= 3, got {n!r}")
+    if not radius > 0:
+        raise ValueError(f"radius must be positive, got {radius!r}")
+    theta = (2 * np.pi / n) * np.arange(int(n))
+    sign = -1.0 if clockwise else 1.0
+    vertices = np.stack([np.cos(theta), sign * np.sin(theta)], axis=1)
+    vertices *= radius
+    vertices += np.asarray(center, dtype=float)
+    return DiscreteCurve(vertices)

@@ -1,0 +1,170 @@
+"""Smooth reference curves (lecture §2), to compare discrete curvature against.
+
+A :class:`SmoothCurve` is a regular parametric curve ``gamma(t)``, ``t`` in ``[t0, t1]``, given by
+callables for ``gamma``, ``gamma'`` and ``gamma''``. It knows its unit tangent ``T``, normal
+``N = J T`` and signed curvature ``kappa = -T' . N`` (positive on a clockwise circle) exactly,
+measures arc length by quadrature, and samples itself into a :class:`~ddg.DiscreteCurve`.
+"""
+
+from __future__ import annotations
+
+from functools import cached_property
+
+import numpy as np
+
+from .curve import DiscreteCurve
+
+# Gauss-Legendre rule on [0, 1], 8 nodes: exact for polynomials of degree 15.
+_GL_X, _GL_W = np.polynomial.legendre.leggauss(8)
+_GL_X, _GL_W = (_GL_X + 1) / 2, _GL_W / 2
+
+
+def _points(f, t):
+    """Evaluate a plane-curve callable at ``t`` (scalar or array) as an array of shape ``t.shape + (2,)``."""
+    t = np.asarray(t, dtype=float)
+    x, y = f(t)
+    return np.stack(np.broadcast_arrays(x, y, t)[:2], axis=-1)
+
+
+class SmoothCurve:
+    """A regular plane curve ``gamma: [t0, t1] -> R^2`` with known first and second derivatives.
+
+    Parameters
+    ----------
+    position, velocity, acceleration : callables
+        ``t -> (x, y)`` for ``gamma(t)``, ``gamma'(t)`` and ``gamma''(t)``, vectorized over arrays
+        of ``t``.
+    t0, t1 : float
+        The parameter interval.
+    closed : bool
+        Whether ``gamma(t1) = gamma(t0)`` (to every order); sampling then omits the end point.
+    name : str
+        Used in plots and messages.
+    """
+
+    def __init__(self, position, velocity, acceleration, t0=0.0, t1=2 * np.pi, closed=True, name="curve"):
+        if not t1 > t0:
+            raise ValueError(f"need t1 > t0, got t0={t0!r}, t1={t1!r}")
+        self._gamma, self._dgamma, self._ddgamma = position, velocity, acceleration
+        self.t0, self.t1, self.closed, self.name = float(t0), float(t1), bool(closed), name
+
+    def __repr__(self):
+        return f"SmoothCurve({self.name!r}, t in [{self.t0:.6g}, {self.t1:.6g}], length={self.length:.6g})"
+
+    def position(self, t):
+        """``gamma(t)``, shape ``t.shape + (2,)``."""
+        return _points(self._gamma, t)
+
+    def speed(self, t):
+        """``|gamma'(t)|``."""
+        d = _points(self._dgamma, t)
+        return np.sqrt(d[..., 0] ** 2 + d[..., 1] ** 2)
+
+    def tangent(self, t):
+        """Unit tangent ``T = gamma' / |gamma'|``."""
+        d = _points(self._dgamma, t)
+        return d / np.sqrt(d[..., 0] ** 2 + d[..., 1] ** 2)[..., None]
+
+    def normal(self, t):
+        """Normal ``N = J T`` (``J`` rotates by +90 degrees): outward on a clockwise circle."""
+        T = self.tangent(t)
+        return np.stack([-T[..., 1], T[..., 0]], axis=-1)
+
+    def curvature(self, t):
+        """Signed curvature ``kappa = -T' . N = -(gamma' x gamma'') / |gamma'|^3`` (lecture §2).
+
+        Positive where the curve turns clockwise: ``+1/r`` on a clockwise circle.
+        """
+        d, dd = _points(self._dgamma, t), _points(self._ddgamma, t)
+        cross = d[..., 0] * dd[..., 1] - d[..., 1] * dd[..., 0]
+        return -cross / (d[..., 0] ** 2 + d[..., 1] ** 2) ** 1.5
+
+    # ---------------------------------------------------------------------- arc length
+
+    _GRID = 1024  # quadrature cells; 8 Gauss nodes each
+
+    @cached_property
+    def _grid(self):
+        """Cell boundaries in ``t`` and the arc length up to each of them."""
+        t = np.linspace(self.t0, self.t1, self._GRID + 1)
+        return t, np.concatenate([[0.0], np.cumsum(self._integrate_speed(t[:-1], t[1:]))])
+
+    def _integrate_speed(self, a, b):
+        nodes = a[..., None] + (b - a)[..., None] * _GL_X
+        return (b - a) * (self.speed(nodes) @ _GL_W)
+
+    def arc_length(self, t):
+        """``s(t) = int_{t0}^{t} |gamma'|``: arc length from the start to parameter ``t``."""
+        t = np.asarray(t, dtype=float)
+        grid, s = self._grid
+        cell = np.clip(np.searchsorted(grid, t, side="right") - 1, 0, self._GRID - 1)
+        return s[cell] + self._integrate_speed(grid[cell], t)
+
+    @cached_property
+    def length(self):
+        """Total arc length ``L``."""
+        return float(self._grid[1][-1])
+
+    def parameter_at(self, s):
+        """The parameter ``t`` with ``arc_length(t) = s`` (inverse of :meth:`arc_length`)."""
+        s = np.asarray(s, dtype=float)
+        grid, S = self._grid
+        t = np.interp(s, S, grid)
+        for _ in range(4):  # Newton's method: ds/dt = |gamma'|
+            t = np.clip(t - (self.arc_length(t) - s) / self.speed(t), self.t0, self.t1)
+        return t
+
+    def total_curvature(self):
+        """``int kappa ds``: ``2 pi`` times the turning number for a closed curve (Theorem 2.1)."""
+        grid, _ = self._grid
+        nodes = grid[:-1, None] + np.diff(grid)[:, None] * _GL_X
+        integrand = self.curvature(nodes) * self.speed(nodes)
+        return float((np.diff(grid) * (integrand @ _GL_W)).sum())
+
+    # ------------------------------------------------------------------------ sampling
+
+    def sample_parameters(self, n, uniform="parameter"):
+        """``n`` parameter values, equally spaced in ``"parameter"`` or in ``"arclength"``."""
+        if uniform not in ("parameter", "arclength"):
+            raise ValueError(f"uniform must be 'parameter' or 'arclength', got {uniform!r}")
+        count = n if self.closed else n - 1
+        if uniform == "parameter":
+            return self.t0 + (self.t1 - self.t0) * np.arange(n) / count
+        return self.parameter_at(self.length * np.arange(n) / count)
+
+    def sample(self, n, uniform="parameter"):
+        """A :class:`~ddg.DiscreteCurve` with ``n`` vertices on the curve.
+
+        ``uniform="parameter"`` spaces them equally in ``t``; ``"arclength"`` equally in arc
+        length. A closed curve leaves out the end point (it repeats the start).
+        """
+        return DiscreteCurve(self.position(self.sample_parameters(n, uniform)), closed=self.closed)
+
+
+def circle(radius=1.0, center=(0.0, 0.0), clockwise=True):
+    """The circle ``center + r (cos t, -sin t)`` (clockwise) or ``(cos t, sin t)``: curvature ``+-1/r``."""
+    if not radius > 0:
+        raise ValueError(f"radius must be positive, got {radius!r}")
+    return ellipse(radius, radius, center, clockwise, name=f"circle r={radius:g}")
+
+
+def ellipse(a=2.0, b=1.0, center=(0.0, 0.0), clockwise=True, name=None):
+    """The ellipse ``center + (a cos t, -+ b sin t)``, ``t`` in ``[0, 2 pi)``.
+
+    Clockwise, its curvature is ``kappa(t) = a b / (a^2 sin^2 t + b^2 cos^2 t)^(3/2)``.
+    """
+    if not (a > 0 and b > 0):
+        raise ValueError(f"semi-axes must be positive, got a={a!r}, b={b!r}")
+    cx, cy = center
+    s = -1.0 if clockwise else 1.0
+    return SmoothCurve(
+        lambda t: (cx + a * np.cos(t), cy + s * b * np.sin(t)),
+        lambda t: (-a * np.sin(t), s * b * np.cos(t)),
+        lambda t: (-a * np.cos(t), -s * b * np.sin(t)),
+        name=name or f"ellipse a={a:g}, b={b:g}",
+    )
+
+
+def parametric(position, velocity, acceleration, t0=0.0, t1=2 * np.pi, closed=True, name="curve"):
+    """Any curve given by callables for ``gamma``, ``gamma'`` and ``gamma''`` (see :class:`SmoothCurve`)."""
+    return SmoothCurve(position, velocity, acceleration, t0, t1, closed, name)

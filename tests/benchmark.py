@@ -1,0 +1,65 @@
+"""`make bench`: how fast ddg builds a curve and its three curvatures, against one np.copy.
+
+For n = 10^3 ... 10^7 vertices of a regular polygon it times, in this one run,
+  copy   : np.copy of the (n, 2) vertex array (the cheapest thing that touches every vertex),
+  curve  : DiscreteCurve(vertices) and curvature(kind) for the three kinds, from scratch,
+and prints the best of several repeats of each and their ratio. It then checks the accuracy the
+input allows on a regular 10^6-gon and the peak memory of the n = 10^7 run.
+
+Ratios, not seconds, are comparable between machines; the machines are shared, so run it twice
+before believing a difference of 20%.
+"""
+
+import gc
+import time
+import tracemalloc
+
+import numpy as np
+
+import ddg
+
+
+def best_time(f, repeats):
+    times = []
+    for _ in range(repeats):
+        gc.collect()
+        start = time.perf_counter()
+        f()
+        times.append(time.perf_counter() - start)
+    return min(times)
+
+
+def build_and_curvatures(vertices):
+    curve = ddg.DiscreteCurve(vertices)
+    return [curve.curvature(kind) for kind in ddg.CURVATURES]
+
+
+def main():
+    print(f"ddg {ddg.__version__}, numpy {np.__version__}")
+    print(f"{'n':>10} {'copy [ms]':>11} {'curve + 3 curvatures [ms]':>27} {'ratio':>7}")
+    for exponent in range(3, 8):
+        n = 10**exponent
+        vertices = np.array(ddg.regular_polygon(n, 0.7).vertices)
+        repeats = max(3, min(200, 10**7 // n))
+        copy = best_time(lambda: np.copy(vertices), repeats)
+        curve = best_time(lambda: build_and_curvatures(vertices), repeats)
+        print(f"{n:>10} {copy * 1e3:>11.3f} {curve * 1e3:>27.3f} {curve / copy:>7.1f}")
+
+    c = ddg.regular_polygon(10**6, 0.7)
+    print(f"\nregular 10^6-gon, r = 0.7: |sum psi - 2 pi| = {abs(c.turning_angles.sum() - 2 * np.pi):.1e} (need < 1e-9), "
+          f"max |k_sine - 1/r| = {np.abs(c.curvature('sine') - 1 / 0.7).max():.1e} (need < 1e-4)")
+
+    vertices = np.array(ddg.regular_polygon(10**7, 0.7).vertices)
+    del c
+    gc.collect()
+    tracemalloc.start()
+    result = build_and_curvatures(vertices)
+    _, peak = tracemalloc.get_traced_memory()
+    tracemalloc.stop()
+    del result
+    print(f"n = 10^7: peak memory of build + curvatures {peak / 2**30:.2f} GiB "
+          f"(+ {vertices.nbytes / 2**30:.2f} GiB input; need < 2 GB in all)")
+
+
+if __name__ == "__main__":
+    main()
