@@ -1,6 +1,6 @@
 # Two commands do everything on a fresh machine (Python >= 3.11):
 #   make book   build the course companion into _build/html
-#   make test   run every test (unit tests, every notebook, the strict book build)
+#   make test   run every test (unit tests, every notebook through nbval, the strict book build)
 # and `make bench` prints the benchmark table.
 PYTHON ?= python3
 VENV   := .venv
@@ -29,8 +29,10 @@ book: $(STAMP) _build/.ddg-stamp
 	$(JB) build . 
 	@echo "The book is at $(CURDIR)/_build/html/index.html"
 
+# Unit tests and every notebook (nbval runs each notebook's cells, asserts included, on one kernel
+# per notebook), then the strict book build, which executes every notebook again.
 test: $(STAMP)
-	$(BIN)/python -m pytest -n 2 tests
+	$(BIN)/python -m pytest -n 2 --dist loadscope --nbval-lax --nbval-current-env tests book
 	rm -rf _build/.jupyter_cache  # the gating build re-executes every notebook
 	$(JB) build . -W -n --keep-going
 	mkdir -p _build && touch _build/.ddg-stamp

@@ -168,3 +168,32 @@ def ellipse(a=2.0, b=1.0, center=(0.0, 0.0), clockwise=True, name=None):
 def parametric(position, velocity, acceleration, t0=0.0, t1=2 * np.pi, closed=True, name="curve"):
     """Any curve given by callables for ``gamma``, ``gamma'`` and ``gamma''`` (see :class:`SmoothCurve`)."""
     return SmoothCurve(position, velocity, acceleration, t0, t1, closed, name)
+
+
+def from_curvature(kappa, length, samples=20001, start=(0.0, 0.0), direction=0.0):
+    """Rebuild a curve from its curvature: Property 0 of the lecture (§2) as a computation.
+
+    Property 0 says ``T' = -kappa J T`` and ``gamma' = T``. Writing ``T = (cos theta, sin theta)``
+    gives ``T' = theta' J T``, so ``theta' = -kappa``: integrate ``kappa`` once for the direction
+    and ``(cos theta, sin theta)`` once more for the position (trapezoidal rule, second order).
+
+    Parameters
+    ----------
+    kappa : callable
+        ``s -> kappa(s)``, vectorized, for arc length ``s`` in ``[0, length]``.
+    length : float
+        Length of the curve to rebuild.
+    start, direction :
+        ``gamma(0)`` and the angle of ``T(0)`` (radians, counter-clockwise from the x-axis): the
+        two things curvature does not determine.
+
+    Returns
+    -------
+    s, points : arrays of shape ``(samples,)`` and ``(samples, 2)``
+    """
+    s = np.linspace(0.0, length, samples)
+    k = np.broadcast_to(np.asarray(kappa(s), dtype=float), s.shape)
+    theta = direction - np.concatenate([[0.0], np.cumsum((k[1:] + k[:-1]) / 2 * np.diff(s))])
+    T = np.stack([np.cos(theta), np.sin(theta)], axis=1)
+    steps = (T[1:] + T[:-1]) / 2 * np.diff(s)[:, None]
+    return s, np.asarray(start, dtype=float) + np.concatenate([[[0.0, 0.0]], np.cumsum(steps, axis=0)])
