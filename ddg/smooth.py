@@ -197,3 +197,19 @@ def from_curvature(kappa, length, samples=20001, start=(0.0, 0.0), direction=0.0
     T = np.stack([np.cos(theta), np.sin(theta)], axis=1)
     steps = (T[1:] + T[:-1]) / 2 * np.diff(s)[:, None]
     return s, np.asarray(start, dtype=float) + np.concatenate([[[0.0, 0.0]], np.cumsum(steps, axis=0)])
+
+
+def polar(r, dr, ddr, clockwise=True, name="polar curve"):
+    """The closed curve ``r(t) (cos t, -+ sin t)``, ``t`` in ``[0, 2 pi)``, from ``r``, ``r'`` and ``r''``.
+
+    With ``clockwise=True`` (default) the curve is traversed clockwise, as the lecture prefers.
+    """
+    sign = -1.0 if clockwise else 1.0
+    c, s = np.cos, np.sin
+    return SmoothCurve(
+        lambda t: (r(t) * c(t), sign * r(t) * s(t)),
+        lambda t: (dr(t) * c(t) - r(t) * s(t), sign * (dr(t) * s(t) + r(t) * c(t))),
+        lambda t: (ddr(t) * c(t) - 2 * dr(t) * s(t) - r(t) * c(t),
+                   sign * (ddr(t) * s(t) + 2 * dr(t) * c(t) - r(t) * s(t))),
+        name=name,
+    )

@@ -4,7 +4,8 @@ For n = 10^3 ... 10^7 vertices of a regular polygon it times, in this one run,
   copy   : np.copy of the (n, 2) vertex array (the cheapest thing that touches every vertex),
   curve  : DiscreteCurve(vertices) and curvature(kind) for the three kinds, from scratch,
 and prints the best of several repeats of each and their ratio. It then checks the accuracy the
-input allows on a regular 10^6-gon and the peak memory of the n = 10^7 run.
+input allows on a regular 10^6-gon, the peak memory of the n = 10^7 run, and the time one slider
+move of each explorer takes (ddg.explore).
 
 Ratios, not seconds, are comparable between machines; the machines are shared, so run it twice
 before believing a difference of 20%.
@@ -34,6 +35,28 @@ def build_and_curvatures(vertices):
     return [curve.curvature(kind) for kind in ddg.CURVATURES]
 
 
+def explorer_updates():
+    """One slider move of each explorer (recompute and redraw to PNG), n <= 1000: target well under 100 ms."""
+    from ddg.explore import InflationExplorer, PolygonExplorer, VertexExplorer
+
+    cases = [
+        (PolygonExplorer(), "n", [10, 100, 1000], "polygon explorer, n = {}"),
+        (InflationExplorer(), "eps", [0.1, 0.5, 1.0], "inflation explorer, eps = {}"),
+        (VertexExplorer(), "dx", [0.2, -0.4, 0.8], "vertex explorer, dx = {}"),
+    ]
+    print(f"\n{'explorer update (compute + redraw)':40s} {'best [ms]':>10} {'median [ms]':>12}")
+    for explorer, name, values, label in cases:
+        explorer.refresh()  # first draw: figure and background
+        for value in values:
+            explorer.controls[name].value = value
+            times = []
+            for _ in range(15):
+                start = time.perf_counter()
+                explorer.refresh()
+                times.append(time.perf_counter() - start)
+            print(f"{label.format(value):40s} {min(times) * 1e3:>10.1f} {np.median(times) * 1e3:>12.1f}")
+
+
 def main():
     print(f"ddg {ddg.__version__}, numpy {np.__version__}")
     print(f"{'n':>10} {'copy [ms]':>11} {'curve + 3 curvatures [ms]':>27} {'ratio':>7}")
@@ -59,6 +82,7 @@ def main():
     del result
     print(f"n = 10^7: peak memory of build + curvatures {peak / 2**30:.2f} GiB "
           f"(+ {vertices.nbytes / 2**30:.2f} GiB input; need < 2 GB in all)")
+    explorer_updates()
 
 
 if __name__ == "__main__":

@@ -1,0 +1,61 @@
+"""The book's notebooks and configuration stay consistent (what a reader and Colab rely on)."""
+
+import json
+import pathlib
+import re
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import yaml  # noqa: E402
+from matplotlib.animation import FuncAnimation  # noqa: E402
+
+import ddg  # noqa: E402
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+NOTEBOOKS = sorted((ROOT / "book").glob("*.ipynb"))
+
+
+def test_every_notebook_is_in_the_table_of_contents():
+    toc = (ROOT / "_toc.yml").read_text()
+    listed = set(re.findall(r"file: book/(\S+)", toc))
+    assert {nb.stem for nb in NOTEBOOKS} <= listed
+    assert len(NOTEBOOKS) >= 8
+
+
+def test_notebooks_are_committed_without_outputs_and_run_python3():
+    for nb in NOTEBOOKS:
+        data = json.loads(nb.read_text())
+        assert data["metadata"]["kernelspec"]["name"] == "python3", nb.name
+        for cell in data["cells"]:
+            if cell["cell_type"] == "code":
+                assert not cell["outputs"] and cell["execution_count"] is None, nb.name
+
+
+def test_every_notebook_installs_ddg_on_colab_from_the_configured_repository():
+    url = yaml.safe_load((ROOT / "_config.yml").read_text())["repository"]["url"]
+    for nb in NOTEBOOKS:
+        first_code = next(c for c in json.loads(nb.read_text())["cells"] if c["cell_type"] == "code")
+        source = "".join(first_code["source"])
+        assert "google.colab" in source and f"git+{url}" in source, nb.name
+        assert "remove-cell" in first_code["metadata"].get("tags", []), nb.name
+
+
+def test_animation_html_plays_offline():
+    fig, ax = plt.subplots()
+    (line,) = ax.plot([], [])
+    animation = FuncAnimation(fig, lambda i: line.set_data([0, i], [0, i]), frames=3)
+    html = ddg.plot.animation_html(animation)
+    plt.close(fig)
+    assert "play_animation" in html and html.count("data:image/png;base64") == 3
+    assert "font-awesome" not in html and "https://" not in html
+
+
+def test_plot_curve_closes_closed_curves():
+    fig, ax = plt.subplots()
+    line = ddg.plot.plot_curve(ddg.regular_polygon(5), ax)
+    assert len(line.get_xdata()) == 6 and line.get_xdata()[0] == line.get_xdata()[-1]
+    open_line = ddg.plot.plot_curve(ddg.DiscreteCurve([[0, 0], [1, 0], [1, 1]], closed=False), ax)
+    assert len(open_line.get_xdata()) == 3
+    plt.close(fig)
