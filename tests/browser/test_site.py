@@ -164,3 +164,14 @@ def test_solutions_stay_hidden_until_clicked(server, browser):
             assert body.is_visible(), f"{path}: the solution does not open when clicked"
         finally:
             visit.close()
+
+
+def test_table_one_is_rendered_as_a_table(server, browser):
+    visit = Visit(browser, server, "book/06_table.html")
+    try:
+        table = visit.page.locator("table").filter(has_text="Winding number theorem").first
+        assert table.locator("tbody tr").count() == 3  # one row per formula
+        assert table.locator("mjx-container").count() >= 3  # the formulas, typeset
+        assert table.inner_text().count("✓") + table.inner_text().count("✗") == 15
+    finally:
+        visit.close()
