@@ -1,14 +1,14 @@
 # Two commands do everything on a fresh machine (Python >= 3.11):
 #   make book   build the course companion into _build/html
 #   make test   run every test (unit tests, every notebook through nbval, the strict book build)
-# and `make bench` prints the benchmark table.
+# and `make bench` prints the benchmark table, `make student` writes the student edition.
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 JB     := $(BIN)/jupyter-book
 
-.PHONY: book test bench clean
+.PHONY: book test bench student clean
 
 # (Re)create the environment when it is missing or older than the pins.
 $(STAMP): requirements.txt pyproject.toml
@@ -59,6 +59,11 @@ test: $(STAMP) $(VENDOR)/.installed
 	$(JB) build . -W -n --keep-going
 	mkdir -p _build && touch _build/.ddg-stamp
 	$(BIN)/python -m pytest tests/browser
+
+# The student edition: every solution removed, coding answers replaced by starter code (student/).
+student: $(STAMP)
+	$(BIN)/python -m ddg.edition --out student
+	@echo "Build it with: $(JB) build student   (its notebooks are not executed: the starters raise)"
 
 bench: $(STAMP)
 	$(BIN)/python tests/benchmark.py

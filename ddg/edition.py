@@ -1,0 +1,121 @@
+"""The student edition: ``python -m ddg.edition`` (``make student``) writes ``student/``.
+
+The book's notebooks mark their homework like this:
+
+* a solution is a gated block, from a markdown cell that opens ``{solution-start}`` to one that
+  holds ``{solution-end}``; everything in it is the instructor's;
+* inside it, a code cell tagged ``solution`` holds the reference answer, and a cell tagged
+  ``check`` calls a ``ddg.checks`` function on it.
+
+In the student edition each solution block is removed. Its ``solution`` cells become starter code
+(the same function signatures and docstrings, bodies replaced by ``raise NotImplementedError``;
+other statements become ``name = ...``), and its ``check`` cells stay, so students get immediate
+feedback on their own code. The exercise texts are kept unchanged.
+"""
+
+import argparse
+import ast
+import pathlib
+import re
+import shutil
+
+import nbformat
+
+STARTER_NOTE = "# Exercise: write your answer here, then run the check below."
+
+
+def starter(source):
+    """Starter code for a solution cell: signatures and docstrings kept, every body removed."""
+    tree = ast.parse(source)
+    parts = [STARTER_NOTE]
+    for node in tree.body:
+        if isinstance(node, ast.FunctionDef):
+            doc = ast.get_docstring(node)
+            args = ast.unparse(node.args)
+            lines = [f"def {node.name}({args}):"]
+            if doc:
+                lines.append('    """' + doc.replace("\n", "\n    ") + '"""')
+            lines.append('    raise NotImplementedError("write this function")')
+            parts.append("\n".join(lines))
+        elif isinstance(node, (ast.Assign, ast.AnnAssign)):
+            targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+            parts.append(" = ".join(ast.unparse(t) for t in targets) + " = ...  # your answer")
+        elif isinstance(node, (ast.Import, ast.ImportFrom)):
+            parts.append(ast.unparse(node))
+    return "\n\n".join(parts) + "\n"
+
+
+def _opens(cell):
+    return cell.cell_type == "markdown" and re.search(r"\{solution-start\}", cell.source)
+
+
+def _closes(cell):
+    return cell.cell_type == "markdown" and re.search(r"\{solution-end\}", cell.source)
+
+
+def student_notebook(nb):
+    """A copy of ``nb`` with every solution block replaced by starter and check cells."""
+    nb = nbformat.from_dict(nb)
+    cells, inside = [], False
+    for cell in nb.cells:
+        tags = cell.get("metadata", {}).get("tags", [])
+        if _opens(cell):
+            if inside:
+                raise ValueError("a {solution-start} block opens inside another one")
+            inside = not _closes(cell)  # a short solution may open and close in one cell
+            continue
+        if _closes(cell):
+            if not inside:
+                raise ValueError("a {solution-end} without its {solution-start}")
+            inside = False
+            continue
+        if not inside:
+            cells.append(cell)
+        elif "solution" in tags:
+            cell.source = starter(cell.source)
+            cell.metadata["tags"] = [t for t in tags if t != "solution"] + ["starter"]
+            cells.append(cell)
+        elif "check" in tags:
+            cells.append(cell)
+    if inside:
+        raise ValueError("a {solution-start} block is never closed")
+    for i, cell in enumerate(cells):
+        if cell.cell_type == "code":
+            cell.outputs, cell.execution_count = [], None
+        cell["id"] = f"s{i:03d}"
+    nb.cells = cells
+    return nb
+
+
+def write_edition(root, out):
+    """Write the student edition of the book at ``root`` into ``out`` (a buildable Jupyter Book)."""
+    root, out = pathlib.Path(root), pathlib.Path(out)
+    if out.exists():
+        shutil.rmtree(out)
+    (out / "book").mkdir(parents=True)
+    for path in sorted((root / "book").iterdir()):
+        if path.suffix == ".ipynb":
+            nbformat.write(student_notebook(nbformat.read(path, as_version=4)), out / "book" / path.name)
+        elif path.is_file():
+            shutil.copy(path, out / "book" / path.name)
+    shutil.copy(root / "_toc.yml", out / "_toc.yml")
+    config = (root / "_config.yml").read_text()
+    config = re.sub(r"execute_notebooks: \w+", "execute_notebooks: 'off'", config)  # starters raise until solved
+    config = config.replace('title: "', 'title: "Student edition: ', 1)
+    vendor = (root / ".venv" / "vendor").resolve()  # the offline assets, wherever the edition is written
+    config = config.replace("html_static_path: [.venv/vendor]", f"html_static_path: [{vendor}]")
+    (out / "_config.yml").write_text(config)
+    return out
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--root", default=".", help="the repository (with book/, _config.yml, _toc.yml)")
+    parser.add_argument("--out", default="student", help="where to write the edition")
+    args = parser.parse_args(argv)
+    out = write_edition(args.root, args.out)
+    print(f"student edition written to {out.resolve()}")
+
+
+if __name__ == "__main__":
+    main()
