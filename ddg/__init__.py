@@ -9,8 +9,8 @@ positive (a clockwise circle has curvature ``+1/r`` and outward normals ``N = J 
 (1, 1.0)
 """
 
-from . import plot, smooth
+from . import flow, plot, smooth
 from .curve import CURVATURES, INFLATIONS, DiscreteCurve, regular_polygon
 
-__all__ = ["CURVATURES", "INFLATIONS", "DiscreteCurve", "regular_polygon", "plot", "smooth"]
+__all__ = ["CURVATURES", "INFLATIONS", "DiscreteCurve", "regular_polygon", "flow", "plot", "smooth"]
 __version__ = "0.1.0"

@@ -122,8 +122,9 @@ def test_pages_were_found():
     assert "book/05_inflation.html" in PAGES and len(PAGES) >= 10
 
 
-def test_inflation_animation_plays(server, browser):
-    visit = Visit(browser, server, "book/05_inflation.html")
+@pytest.mark.parametrize("path", ["book/05_inflation.html", "book/08_curve_shortening.html"])
+def test_animation_plays(server, browser, path):
+    visit = Visit(browser, server, path)
     try:
         frame = visit.page.locator("img[id^='_anim_img']").first
         before = frame.get_attribute("src")
@@ -135,7 +136,7 @@ def test_inflation_animation_plays(server, browser):
 
 
 def test_explorers_show_their_saved_state(server, browser):
-    visit = Visit(browser, server, "book/08_explorers.html")
+    visit = Visit(browser, server, "book/09_explorers.html")
     try:
         page = visit.page
         page.wait_for_selector(".widget-slider", timeout=15000)
