@@ -39,6 +39,7 @@ PAGES = sorted(str(p.relative_to(SITE)) for p in SITE.rglob("*.html") if "_stati
 def server():
     if not (SITE / "index.html").exists():
         pytest.fail("no built book in _build/html: run `make book` first")
+    shutil.rmtree(SHOTS, ignore_errors=True)  # screenshots of this build only
 
     class Quiet(http.server.SimpleHTTPRequestHandler):
         def log_message(self, *args):
@@ -169,3 +170,17 @@ def test_solutions_stay_hidden_until_clicked(server, browser):
             assert first.locator(":scope > :not(.admonition-title)").first.is_visible(), f"{path}: a solution does not open when clicked"
         finally:
             visit.close()
+
+
+def test_every_page_and_the_site_fit_their_budgets():
+    """Each page (its HTML and the images it shows) at most 2 MB; the whole site at most 25 MB."""
+    heavy = {}
+    for path in PAGES:
+        html = (SITE / path).read_text(encoding="utf-8")
+        images = {m for m in re.findall(r'<img[^>]+src="([^"]+)"', html) if not m.startswith(("data:", "http"))}
+        size = (SITE / path).stat().st_size + sum((SITE / path).parent.joinpath(src).stat().st_size for src in images)
+        if size > 2 * 2**20:
+            heavy[path] = size
+    assert not heavy, f"pages over 2 MB: {heavy}"
+    site = sum(p.stat().st_size for p in SITE.rglob("*") if p.is_file())
+    assert site < 25 * 2**20, f"the site is {site / 2**20:.1f} MB"
