@@ -172,6 +172,17 @@ class DiscreteCurve:
         """Edge normals ``N_{i+1/2} = J T_{i+1/2}``: outward on a clockwise convex curve."""
         return _J(self.tangents)
 
+    @cached_property
+    def bisector_normals(self):
+        """``N_i``: unit bisector of the edge normals ``N_{i-1/2}`` and ``N_{i+1/2}`` at each vertex.
+
+        It is the direction of the gradient of length (lecture §3.3): ``(grad L)_i = k_i^sine N_i``
+        (eq. 3). Closed curve: every vertex; open curve: the interior vertices.
+        """
+        N_prev, N_next = self._around_vertices(self.normals)
+        bisector = N_prev + N_next
+        return bisector / np.linalg.norm(bisector, axis=1)[:, None]
+
     # ---------------------------------------------------------- vertices (lecture §3.1-3.2)
 
     def _around_vertices(self, values):

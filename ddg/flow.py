@@ -43,16 +43,9 @@ class FlowRun:
         return np.gradient(self.areas, self.times)
 
 
-def _vertex_normals(curve):
-    """Unit bisectors of the two edge normals at each vertex (the direction of grad L)."""
-    N_prev, N_next = np.roll(curve.normals, 1, axis=0), curve.normals
-    bisector = N_prev + N_next
-    return bisector / np.linalg.norm(bisector, axis=1)[:, None]
-
-
 def velocity(curve, kind):
     """``-k_i N_i`` for every vertex: the discrete curve-shortening velocity."""
-    return -curve.curvature(kind)[:, None] * _vertex_normals(curve)
+    return -curve.curvature(kind)[:, None] * curve.bisector_normals
 
 
 def _speed_factor(curve, kind):
@@ -61,7 +54,7 @@ def _speed_factor(curve, kind):
     if kind == "sine":
         return np.ones(len(curve))
     if kind == "angle":
-        return np.where(np.abs(half) < 1e-8, 1.0, half / np.where(half == 0, 1.0, np.sin(half)))
+        return 1 / np.sinc(half / np.pi)  # (psi/2) / sin(psi/2), = 1 at psi = 0
     return 1 / np.cos(half)
 
 

@@ -40,12 +40,15 @@ class SmoothCurve:
         Whether ``gamma(t1) = gamma(t0)`` (to every order); sampling then omits the end point.
     name : str
         Used in plots and messages.
+
+    The callables are kept as ``gamma``, ``dgamma`` and ``ddgamma``, so a new curve can be built
+    from an old one (moved, reflected, varied).
     """
 
     def __init__(self, position, velocity, acceleration, t0=0.0, t1=2 * np.pi, closed=True, name="curve"):
         if not t1 > t0:
             raise ValueError(f"need t1 > t0, got t0={t0!r}, t1={t1!r}")
-        self._gamma, self._dgamma, self._ddgamma = position, velocity, acceleration
+        self.gamma, self.dgamma, self.ddgamma = position, velocity, acceleration  # the callables given
         self.t0, self.t1, self.closed, self.name = float(t0), float(t1), bool(closed), name
 
     def __repr__(self):
@@ -53,16 +56,16 @@ class SmoothCurve:
 
     def position(self, t):
         """``gamma(t)``, shape ``t.shape + (2,)``."""
-        return _points(self._gamma, t)
+        return _points(self.gamma, t)
 
     def speed(self, t):
         """``|gamma'(t)|``."""
-        d = _points(self._dgamma, t)
+        d = _points(self.dgamma, t)
         return np.sqrt(d[..., 0] ** 2 + d[..., 1] ** 2)
 
     def tangent(self, t):
         """Unit tangent ``T = gamma' / |gamma'|``."""
-        d = _points(self._dgamma, t)
+        d = _points(self.dgamma, t)
         return d / np.sqrt(d[..., 0] ** 2 + d[..., 1] ** 2)[..., None]
 
     def normal(self, t):
@@ -75,7 +78,7 @@ class SmoothCurve:
 
         Positive where the curve turns clockwise: ``+1/r`` on a clockwise circle.
         """
-        d, dd = _points(self._dgamma, t), _points(self._ddgamma, t)
+        d, dd = _points(self.dgamma, t), _points(self.ddgamma, t)
         cross = d[..., 0] * dd[..., 1] - d[..., 1] * dd[..., 0]
         return -cross / (d[..., 0] ** 2 + d[..., 1] ** 2) ** 1.5
 

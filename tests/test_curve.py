@@ -315,3 +315,16 @@ def test_large_regular_polygon_keeps_the_accuracy_the_input_allows():
     c = ddg.regular_polygon(10**6, 0.7)
     assert abs(c.turning_angles.sum() - 2 * np.pi) < 1e-9
     assert np.abs(c.curvature("sine") - 1 / 0.7).max() < 1e-4
+
+
+@settings(max_examples=60, deadline=None)
+@given(polygons())
+def test_length_gradient_is_sine_curvature_times_bisector_normal(v):
+    c = ddg.DiscreteCurve(v)
+    np.testing.assert_allclose(c.length_gradient(), c.curvature("sine")[:, None] * c.bisector_normals, atol=1e-9)
+    np.testing.assert_allclose(np.linalg.norm(c.bisector_normals, axis=1), 1.0)
+
+
+def test_bisector_normals_point_outward_on_a_clockwise_polygon():
+    c = ddg.regular_polygon(7, 2.0)
+    np.testing.assert_allclose(c.bisector_normals, c.vertices / 2.0, atol=1e-12)

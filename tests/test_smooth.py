@@ -55,7 +55,7 @@ def test_parametric_curve_from_callables():
     t = np.linspace(0, 6, 7)
     h = 1e-5  # the derivatives given are consistent with the position (central differences)
     np.testing.assert_allclose((limacon.position(t + h) - limacon.position(t - h)) / (2 * h),
-                               np.stack(limacon._dgamma(t), axis=1), atol=1e-8)
+                               np.stack(limacon.dgamma(t), axis=1), atol=1e-8)
     assert limacon.total_curvature() == pytest.approx(2 * np.pi, rel=1e-10)
     arc = smooth.parametric(lambda t: (np.cos(t), -np.sin(t)), lambda t: (-np.sin(t), -np.cos(t)),
                             lambda t: (-np.cos(t), np.sin(t)), 0, np.pi / 2, closed=False)
