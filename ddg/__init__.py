@@ -1,6 +1,8 @@
 """ddg: discrete differential geometry of plane curves, after Vouga's lecture *Plane Curves*.
 
-A small reference implementation to read next to the lecture. Conventions: clockwise is
+A small reference implementation to read next to the lecture. It needs numpy only; plotting
+(``ddg.plot``), the explorers (``ddg.explore``) and the homework checks (``ddg.checks``) need the
+extras named in their error messages. Conventions: clockwise is
 positive (a clockwise circle has curvature ``+1/r`` and outward normals ``N = J T``).
 
 >>> import ddg
@@ -9,8 +11,21 @@ positive (a clockwise circle has curvature ``+1/r`` and outward normals ``N = J 
 (1, 1.0)
 """
 
-from . import flow, plot, smooth
+import importlib
+
+from . import flow, smooth
 from .curve import CURVATURES, INFLATIONS, DiscreteCurve, regular_polygon
 
-__all__ = ["CURVATURES", "INFLATIONS", "DiscreteCurve", "regular_polygon", "flow", "plot", "smooth"]
+__all__ = ["CURVATURES", "INFLATIONS", "DiscreteCurve", "regular_polygon", "flow", "smooth"]
 __version__ = "0.1.0"
+
+# The geometry above needs numpy only. These parts need more (matplotlib, ipywidgets, shapely,
+# nbformat): each is imported on first use, so `import ddg` works without them, and a missing
+# dependency is an ImportError that names the extra to install (ddg/_extras.py).
+_OPTIONAL = ("plot", "explore", "checks", "edition", "grade")
+
+
+def __getattr__(name):
+    if name in _OPTIONAL:
+        return importlib.import_module(f"{__name__}.{name}")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

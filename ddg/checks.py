@@ -16,6 +16,7 @@ Pass ``seed=`` to repeat the same input.
 
 import numpy as np
 
+from ._extras import missing
 from .curve import DiscreteCurve, regular_polygon
 
 
@@ -369,7 +370,10 @@ def check_minkowski_area(minkowski_area, seed=None):
     It must be right for non-convex polygons too, for ``eps`` small enough that the inflated
     edges meet only their neighbours. It is measured against shapely's round buffer.
     """
-    import shapely
+    try:
+        import shapely
+    except ImportError as error:
+        raise missing("checks", error) from error
 
     rng = np.random.default_rng(seed)
 

@@ -19,7 +19,12 @@ import pathlib
 import re
 import shutil
 
-import nbformat
+from ._extras import missing
+
+try:
+    import nbformat
+except ImportError as error:
+    raise missing("edition", error) from error
 
 STARTER_NOTE = "# Exercise: write your answer here, then run the check below."
 

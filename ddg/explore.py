@@ -16,17 +16,23 @@ are drawn once per shape; a slider move redraws just the artists that change.
 
 import io
 
-import ipywidgets as widgets
 import numpy as np
-import shapely
-from matplotlib import ticker
-from matplotlib.backends.backend_agg import FigureCanvasAgg
-from matplotlib.collections import LineCollection
-from matplotlib.figure import Figure
-from matplotlib.patches import Polygon as PolygonPatch
-from PIL import Image
 
 from . import smooth
+from ._extras import missing
+
+try:
+    import ipywidgets as widgets
+    import shapely
+    from matplotlib import ticker
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.collections import LineCollection
+    from matplotlib.figure import Figure
+    from matplotlib.patches import Polygon as PolygonPatch
+    from PIL import Image
+except ImportError as error:
+    raise missing("explore", error) from error
+
 from .curve import CURVATURES, INFLATIONS, DiscreteCurve, regular_polygon
 
 SHAPES = {

@@ -21,6 +21,11 @@ import numpy as np
 
 from .curve import CURVATURES, DiscreteCurve, _choose
 
+try:  # a progress bar on long runs, when tqdm is installed (it is optional)
+    from tqdm.auto import tqdm
+except ImportError:
+    tqdm = None
+
 METHODS = ("explicit", "semi-implicit")
 
 
@@ -122,7 +127,8 @@ def flow(curve, kind="sine", t_end=1.0, *, method="explicit", dt=None, safety=0.
         Redistribute the vertices evenly in arc length every so many steps (:func:`remesh`). This
         adds tangential motion, which keeps vertices from bunching at sharp corners; the sine flow
         is then no longer exactly the gradient flow of length. Off by default.
-    progress : bool, show a progress bar (``tqdm``) when a run takes more than a second.
+    progress : bool, show a progress bar when a run takes more than a second (needs ``tqdm``;
+        without it the run is the same, with no bar).
 
     Returns
     -------
@@ -143,9 +149,7 @@ def flow(curve, kind="sine", t_end=1.0, *, method="explicit", dt=None, safety=0.
     t, steps, stopped, next_record = 0.0, 0, "reached t_end", 0.0
 
     bar = None
-    if progress:
-        from tqdm.auto import tqdm
-
+    if progress and tqdm is not None:
         bar = tqdm(total=t_end, delay=1.0, unit="time", desc=f"{kind} flow", leave=False,
                    bar_format="{l_bar}{bar}| t = {n:.3g} of {total:.3g} [{elapsed}<{remaining}]")
 

@@ -2,8 +2,14 @@
 
 import re
 
-import matplotlib.pyplot as plt
 import numpy as np
+
+from ._extras import missing
+
+try:
+    import matplotlib.pyplot as plt
+except ImportError as error:
+    raise missing("plot", error) from error
 
 
 def plot_curve(curve, ax=None, vertices=True, **style):
