@@ -1,72 +1,98 @@
-# Two commands do everything on a fresh machine (Python >= 3.11):
+# Two commands do everything on a fresh machine (Linux or macOS, Python >= 3.11):
 #   make book   build the course companion into _build/html
-#   make test   run every test (unit tests, every notebook through nbval, the strict book build)
-# and `make bench` prints the benchmark table, `make student` writes the student edition.
+#   make test   run every test (unit tests, notebooks, the strict build, browser, user journeys)
+# and: make lab (JupyterLab on book/), make bench, make student, make dist, make repo URL=...,
+# make clean. Each creates .venv from the exact pins in requirements.txt when it is missing or
+# the pins changed. Needs GNU make 3.81 or newer (Linux; the make of macOS) and a POSIX sh.
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
-STAMP  := $(VENV)/.installed
+PY     := $(BIN)/python
 JB     := $(BIN)/jupyter-book
+ENV    := $(VENV)/.installed
+VENDOR := $(VENV)/vendor/.installed
 
-.PHONY: book test bench student clean
+# The notebooks import the ddg of this checkout, whatever the environment holds.
+export PYTHONPATH := $(CURDIR)
+# What the pages are computed from: a change here means every notebook must run again.
+INPUTS = $$(find ddg -name '*.py' | sort | xargs cat requirements.txt _config.yml | cksum)
 
-# (Re)create the environment when it is missing or older than the pins.
-$(STAMP): requirements.txt pyproject.toml
+.PHONY: book book-strict test lab bench student dist repo clean
+
+# The environment, rebuilt when requirements.txt or pyproject.toml change (by content, so a fresh
+# clone or a copy with the same pins keeps it). Also a wheelhouse: the pinned wheels a notebook
+# needs, so the journey tests can install into fresh environments without the network.
+$(ENV): requirements.txt pyproject.toml
 	@$(PYTHON) -c 'import sys; sys.exit(sys.version_info < (3, 11))' || \
 		{ echo "error: $(PYTHON) is older than Python 3.11; run: make PYTHON=python3.11 ..." >&2; exit 1; }
-	rm -rf $(VENV)
-	$(PYTHON) -m venv $(VENV)
-	$(BIN)/pip install --quiet --disable-pip-version-check -r requirements.txt
-	$(BIN)/python -c "import matplotlib.pyplot"  # build matplotlib's font cache outside any notebook
-	touch $@
+	@sum="$$(cat requirements.txt pyproject.toml | cksum)"; \
+	if [ -f $@ ] && [ "$$(cat $@)" = "$$sum" ]; then touch $@; exit 0; fi; \
+	echo "setting up $(VENV) from requirements.txt ..."; \
+	rm -rf $(VENV) && $(PYTHON) -m venv $(VENV) && \
+	$(BIN)/pip install --quiet --disable-pip-version-check -r requirements.txt && \
+	grep -v '^-e' requirements.txt > $(VENV)/constraints.txt && \
+	$(BIN)/pip download --quiet --disable-pip-version-check -d $(VENV)/wheelhouse \
+		-c $(VENV)/constraints.txt numpy matplotlib ipywidgets shapely pillow tqdm ipython \
+		ipykernel nbclient setuptools wheel && \
+	$(PY) -c "import matplotlib.pyplot" && \
+	echo "$$sum" > $@
 
-# Front-end assets for a book that works offline, from two pinned npm packages (checked by hash):
-# MathJax 3 (one component and its fonts) and the ipywidgets embedder (with its chunks and fonts).
-# They are copied into _build/html/_static by the book build (html_static_path in _config.yml).
-VENDOR := $(VENV)/vendor
-MATHJAX := mathjax-3.2.2.tgz
-MATHJAX_SHA256 := 1b9c0a1c44df864e915690558e72adb9cc5203360daefd385084ced3b6c64c09
-WIDGETS := jupyter-widgets-html-manager-1.0.7.tgz
-WIDGETS_SHA256 := b21e796f39be9e9a4c2f9843d362bba0b905bcaa62d4a1c12c52de0f67c244bf
+# MathJax and the widgets embedder, served by the book itself (offline): tools/vendor.py.
+$(VENDOR): $(ENV) tools/vendor.py
+	$(PY) tools/vendor.py $(VENV)/vendor
 
-$(VENDOR)/.installed: $(STAMP)
-	@command -v npm >/dev/null || { echo "error: npm (Node.js) is needed to fetch MathJax and the widgets embedder" >&2; exit 1; }
-	rm -rf $(VENDOR) && mkdir -p $(VENDOR)/tarballs $(VENDOR)/mathjax $(VENDOR)/widgets
-	cd $(VENDOR)/tarballs && npm pack --silent mathjax@3.2.2 @jupyter-widgets/html-manager@1.0.7 >/dev/null
-	cd $(VENDOR)/tarballs && printf '%s  %s\n' $(MATHJAX_SHA256) $(MATHJAX) $(WIDGETS_SHA256) $(WIDGETS) | sha256sum --quiet -c
-	tar xzf $(VENDOR)/tarballs/$(MATHJAX) -C $(VENDOR)/mathjax --strip-components=2 \
-		package/es5/tex-mml-chtml.js package/es5/output/chtml/fonts/woff-v2
-	tar xzf $(VENDOR)/tarballs/$(WIDGETS) -C $(VENDOR)/widgets --strip-components=2 --wildcards \
-		'package/dist/*embed.js' '*.woff2' '*.woff' --exclude='*amd*'  # browsers that run embed.js read woff2
-	rm -rf $(VENDOR)/tarballs
-	touch $@
-
-# The notebook cache is keyed on code cells only: clear it whenever ddg/ changes.
-_build/.ddg-stamp: $(wildcard ddg/*.py)
-	rm -rf _build/.jupyter_cache
-	mkdir -p _build && touch $@
-
-book: $(STAMP) $(VENDOR)/.installed _build/.ddg-stamp
-	$(JB) build . 
+# The book. Sphinx re-reads only pages whose source changed and the notebook cache knows only
+# code cells, so when ddg/, the pins or the configuration changed since the last build, the
+# cache and Sphinx's state are dropped: every notebook runs again and every page is rebuilt.
+book: $(ENV) $(VENDOR)
+	@$(PY) tools/repo.py --from-git
+	@inputs="$(INPUTS)"; if [ "$$(cat _build/.inputs 2>/dev/null)" != "$$inputs" ]; then \
+		[ -d _build/.doctrees ] && echo "ddg/, the pins or _config.yml changed: every notebook runs again"; \
+		rm -rf _build/.jupyter_cache _build/.doctrees _build/html; fi; \
+	$(JB) build . && mkdir -p _build && echo "$$inputs" > _build/.inputs
 	@echo "The book is at $(CURDIR)/_build/html/index.html"
 
-# Unit tests and every notebook (nbval runs each notebook's cells, asserts included, on one kernel
-# per notebook), then the strict book build, which executes every notebook again, then the built
-# site in a real browser (Debian's chromium: `.ci/run` installs it when it is missing).
-test: $(STAMP) $(VENDOR)/.installed
-	$(BIN)/python -m pytest -n 2 --dist loadscope --nbval-lax --nbval-current-env --ignore=tests/browser tests book
-	rm -rf _build/.jupyter_cache  # the gating build re-executes every notebook
-	$(JB) build . -W -n --keep-going
-	mkdir -p _build && touch _build/.ddg-stamp
-	$(BIN)/python -m pytest tests/browser
+# The build `make test` gates on: re-reads every page and re-executes every notebook, whatever was
+# built before; any warning, stray stderr or failing cell fails it.
+book-strict: $(ENV) $(VENDOR)
+	@inputs="$(INPUTS)"; rm -rf _build/.jupyter_cache && \
+	$(JB) build . --all -W -n --keep-going && echo "$$inputs" > _build/.inputs
 
-# The student edition: every solution removed, coding answers replaced by starter code (student/).
-student: $(STAMP)
-	$(BIN)/python -m ddg.edition --out student
-	@echo "Build it with: $(JB) build student   (its notebooks are not executed: the starters raise)"
+# First a browser (found or installed, or one line saying what to install), then the unit tests
+# and every notebook (nbval), the strict build, and what runs on the built site and on the
+# repository as a user would: tests/browser (Chromium, network cut) and tests/journeys.
+test: $(ENV) $(VENDOR)
+	@$(PY) tools/browser.py >/dev/null
+	$(PY) -m pytest -n 2 --dist loadscope --nbval-lax --nbval-current-env tests book \
+		--ignore=tests/browser --ignore=tests/journeys
+	$(MAKE) book-strict
+	$(PY) -m pytest -n 2 --dist loadfile tests/browser tests/journeys
 
-bench: $(STAMP)
-	$(BIN)/python tests/benchmark.py
+# JupyterLab on the chapter notebooks; it prints the URL to open (with its token).
+lab: $(ENV)
+	@echo "Starting JupyterLab on book/ (Ctrl-C stops it); open the URL printed below."
+	$(BIN)/jupyter lab --notebook-dir=book --ip=127.0.0.1 $$([ "$$(id -u)" = 0 ] && echo --allow-root)
 
+# The student edition: every solution removed, coding answers replaced by starter code.
+student: $(ENV)
+	$(PY) -m ddg.edition --out _build/student $(if $(FORCE),--force)
+
+bench: $(ENV)
+	$(PY) tests/benchmark.py
+
+# The wheel and the source distribution of ddg (the distribution ddg-plane-curves) in dist/.
+dist: $(ENV)
+	$(PY) -m build --no-isolation --outdir dist .
+
+# Point the launch buttons, the repository button and every notebook's set-up cell at URL.
+repo: $(ENV)
+	@[ -n "$(URL)" ] || { echo "usage: make repo URL=https://github.com/owner/name" >&2; exit 1; }
+	$(PY) tools/repo.py "$(URL)"
+
+# Everything built; the student edition too, unless a notebook there was changed since `make
+# student` wrote it (a student's answers): then it refuses, unless FORCE=1.
 clean:
-	rm -rf _build student
+	@if [ -x $(PY) ]; then $(PY) -m ddg.edition --check-unchanged _build/student/book $(if $(FORCE),--force); \
+	elif [ -d _build/student/book ] && [ -z "$(FORCE)" ]; then \
+		echo "error: cannot check _build/student/book for students' changes without $(VENV); use FORCE=1" >&2; exit 1; fi
+	rm -rf _build dist

@@ -15,16 +15,18 @@ feedback on their own code. The exercise texts are kept unchanged.
 
 import argparse
 import ast
+import hashlib
+import json
 import pathlib
 import re
 import shutil
+import sys
 
 from ._extras import missing
 
-try:
-    import nbformat
-except ImportError as error:
-    raise missing("edition", error) from error
+MANIFEST = ".edition.json"
+"""In the edition's notebook folder: the SHA-256 of each notebook as written, to tell a student's
+changes from the edition's own files (changed notebooks are never overwritten or deleted)."""
 
 STARTER_NOTE = "# Exercise: write your answer here, then run the check below."
 
@@ -58,9 +60,17 @@ def _closes(cell):
     return cell.cell_type == "markdown" and re.search(r"\{solution-end\}", cell.source)
 
 
+def _nbformat():
+    try:
+        import nbformat
+    except ImportError as error:
+        raise missing("edition", error) from error
+    return nbformat
+
+
 def student_notebook(nb):
     """A copy of ``nb`` with every solution block replaced by starter and check cells."""
-    nb = nbformat.from_dict(nb)
+    nb = _nbformat().from_dict(nb)
     cells, inside = [], False
     for cell in nb.cells:
         tags = cell.get("metadata", {}).get("tags", [])
@@ -92,17 +102,49 @@ def student_notebook(nb):
     return nb
 
 
-def write_edition(root, out):
-    """Write the student edition of the book at ``root`` into ``out`` (a buildable Jupyter Book)."""
+def _sha256(path):
+    return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+def changed_notebooks(folder):
+    """Notebooks in ``folder`` that someone changed or added since the edition wrote them."""
+    folder = pathlib.Path(folder)
+    if not folder.is_dir():
+        return []
+    manifest = folder / MANIFEST
+    written = json.loads(manifest.read_text()) if manifest.exists() else {}
+    return sorted(p.name for p in folder.glob("*.ipynb") if written.get(p.name) != _sha256(p))
+
+
+def _refuse_if_changed(folder, force, doing):
+    changed = changed_notebooks(folder)
+    if changed and not force:
+        sys.exit(f"error: not {doing} {folder}: these notebooks were changed there, perhaps with a "
+                 f"student's answers: {', '.join(changed)}. Copy them elsewhere, or pass --force "
+                 "(make ... FORCE=1) to discard them.")
+
+
+def write_edition(root, out, force=False):
+    """Write the student edition of the book at ``root`` into ``out`` (a buildable Jupyter Book).
+
+    Refuses (``SystemExit``) to overwrite notebooks changed since the edition wrote them, unless
+    ``force``.
+    """
+    nbformat = _nbformat()
     root, out = pathlib.Path(root), pathlib.Path(out)
+    _refuse_if_changed(out / "book", force, "overwriting")
     if out.exists():
         shutil.rmtree(out)
     (out / "book").mkdir(parents=True)
+    written = {}
     for path in sorted((root / "book").iterdir()):
         if path.suffix == ".ipynb":
-            nbformat.write(student_notebook(nbformat.read(path, as_version=4)), out / "book" / path.name)
+            target = out / "book" / path.name
+            nbformat.write(student_notebook(nbformat.read(path, as_version=4)), target)
+            written[path.name] = _sha256(target)
         elif path.is_file():
             shutil.copy(path, out / "book" / path.name)
+    (out / "book" / MANIFEST).write_text(json.dumps(written, indent=1) + "\n")
     shutil.copy(root / "_toc.yml", out / "_toc.yml")
     config = (root / "_config.yml").read_text()
     config = re.sub(r"execute_notebooks: \w+", "execute_notebooks: 'off'", config)  # starters raise until solved
@@ -116,9 +158,15 @@ def write_edition(root, out):
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--root", default=".", help="the repository (with book/, _config.yml, _toc.yml)")
-    parser.add_argument("--out", default="student", help="where to write the edition")
+    parser.add_argument("--out", default="_build/student", help="where to write the edition")
+    parser.add_argument("--force", action="store_true", help="overwrite or delete changed notebooks")
+    parser.add_argument("--check-unchanged", metavar="FOLDER",
+                        help="only check that no notebook in FOLDER was changed (before deleting it)")
     args = parser.parse_args(argv)
-    out = write_edition(args.root, args.out)
+    if args.check_unchanged:
+        _refuse_if_changed(pathlib.Path(args.check_unchanged), args.force, "deleting")
+        return
+    out = write_edition(args.root, args.out, args.force)
     print(f"student edition written to {out.resolve()}")
 
 

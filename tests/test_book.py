@@ -3,6 +3,9 @@
 import json
 import pathlib
 import re
+import shutil
+import subprocess
+import sys
 
 import matplotlib
 
@@ -33,13 +36,35 @@ def test_notebooks_are_committed_without_outputs_and_run_python3():
                 assert not cell["outputs"] and cell["execution_count"] is None, nb.name
 
 
-def test_every_notebook_installs_ddg_on_colab_from_the_configured_repository():
+def test_every_notebook_installs_ddg_from_the_configured_repository_where_it_is_missing():
     url = yaml.safe_load((ROOT / "_config.yml").read_text())["repository"]["url"]
     for nb in NOTEBOOKS:
         first_code = next(c for c in json.loads(nb.read_text())["cells"] if c["cell_type"] == "code")
         source = "".join(first_code["source"])
-        assert "google.colab" in source and f"git+{url}" in source, nb.name
+        assert f'REPOSITORY = "{url}"' in source and "git+{REPOSITORY}" in source, nb.name
         assert "remove-cell" in first_code["metadata"].get("tags", []), nb.name
+    assert subprocess.run([sys.executable, "tools/repo.py", "--check"], cwd=ROOT).returncode == 0
+
+
+def test_make_repo_points_config_and_every_notebook_at_a_new_repository(tmp_path):
+    for name in ("_config.yml", "tools/repo.py", *(f"book/{nb.name}" for nb in NOTEBOOKS)):
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy(ROOT / name, tmp_path / name)
+    run = lambda *args: subprocess.run([sys.executable, "tools/repo.py", *args], cwd=tmp_path, capture_output=True, text=True)
+    assert run("git@github.com:someone/dg-course.git").returncode == 0
+    url = "https://github.com/someone/dg-course"
+    assert yaml.safe_load((tmp_path / "_config.yml").read_text())["repository"]["url"] == url
+    for nb in NOTEBOOKS:
+        cells = json.loads((tmp_path / "book" / nb.name).read_text())["cells"]
+        assert f'REPOSITORY = "{url}"' in "".join(next(c for c in cells if c["cell_type"] == "code")["source"])
+    assert run("--check").returncode == 0
+    assert run("not a url").returncode != 0
+
+
+def test_jupyterlab_folds_what_the_book_folds():
+    """Solutions folded, hidden cells collapsed: tools/notebooks.py --fix keeps this true."""
+    result = subprocess.run([sys.executable, "tools/notebooks.py"], cwd=ROOT, capture_output=True, text=True)
+    assert result.returncode == 0, result.stdout
 
 
 def test_animation_html_plays_offline():

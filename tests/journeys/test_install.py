@@ -1,0 +1,57 @@
+"""Journey: `pip install` the package into an environment that has numpy and nothing else.
+
+A student who only wants the geometry runs `make dist` (or downloads the wheel) and installs it
+next to numpy. `import ddg`, the three curvatures and the flow must work there; the optional
+parts must fail with a message that names the extra to install.
+"""
+
+from conftest import OFFLINE_PIP, copy_repository, fresh_venv, run
+
+SCRIPT = r"""
+import importlib, subprocess, sys
+import numpy as np
+import ddg
+
+installed = subprocess.run([sys.executable, "-m", "pip", "list", "--format=freeze"],
+                           capture_output=True, text=True).stdout.lower()
+names = {line.split("==")[0] for line in installed.split()}
+assert names <= {"numpy", "ddg-plane-curves", "ddg_plane_curves", "pip", "setuptools"}, names
+assert "site-packages" in ddg.__file__, ddg.__file__  # the installed wheel, not the source tree
+
+square = ddg.DiscreteCurve([[0, 0], [0, 1], [1, 1], [1, 0]])
+k = {kind: square.curvature(kind) for kind in ddg.CURVATURES}
+assert np.allclose(k["angle"], np.pi / 2) and np.allclose(k["sine"], np.sqrt(2))
+assert np.allclose(k["tangent"], 2.0)
+run = ddg.flow.flow(ddg.regular_polygon(24), "sine", 0.05)
+assert run.stopped == "reached t_end" and run.areas[-1] < run.areas[0]
+print("geometry ok:", {kind: round(float(v[0]), 6) for kind, v in k.items()}, run.stopped)
+
+for module, extra in (("ddg.plot", "plot"), ("ddg.explore", "explore"), ("ddg.edition", "edition")):
+    try:
+        importlib.import_module(module)
+        getattr(sys.modules[module], "student_notebook", lambda nb: None)({})
+    except ImportError as error:
+        assert f'pip install "ddg-plane-curves[{extra}]"' in str(error), str(error)
+        print(f"{module}: {error}")
+    else:
+        raise AssertionError(f"{module} worked without its extra")
+try:
+    ddg.plot
+except ImportError as error:
+    assert "ddg-plane-curves[plot]" in str(error)
+else:
+    raise AssertionError("ddg.plot worked without matplotlib")
+"""
+
+
+def test_wheel_installs_alone_and_names_the_missing_extras(tmp_path):
+    copy = copy_repository(tmp_path / "repo")
+    run(["make", "dist"], cwd=copy)
+    wheels, sdists = list((copy / "dist").glob("*.whl")), list((copy / "dist").glob("*.tar.gz"))
+    assert len(wheels) == 1 and len(sdists) == 1, list((copy / "dist").iterdir())
+
+    python = fresh_venv(tmp_path / "venv")
+    run([str(python), "-m", "pip", "install", "--quiet", str(wheels[0])], env=OFFLINE_PIP)
+    result = run([str(python), "-c", SCRIPT], cwd=tmp_path)  # not the repository: no ddg/ next to it
+    assert "geometry ok" in result.stdout
+    assert 'ddg.plot: matplotlib is not installed; this part of ddg needs the extra [plot]' in result.stdout

@@ -1,0 +1,86 @@
+"""One place names the course repository: `make repo URL=https://github.com/owner/name`.
+
+The URL appears in `_config.yml` (`repository.url`: the launch buttons for Binder and Colab and
+the repository button) and in the first cell of every notebook (where `ddg` is missing, that cell
+installs it from the repository). This tool writes the URL into all of them at once.
+
+    python tools/repo.py URL          point everything at URL
+    python tools/repo.py --from-git   use `git remote get-url origin`, if that is a GitHub repository
+    python tools/repo.py --check      exit 1 if a notebook disagrees with _config.yml
+"""
+
+import json
+import pathlib
+import re
+import subprocess
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+CONFIG = ROOT / "_config.yml"
+SETUP = re.compile(r'^(REPOSITORY = )"([^"]*)"', re.MULTILINE)  # in each notebook's first code cell
+GITHUB = re.compile(r"^(?:https://github\.com/|git@github\.com:|ssh://git@github\.com/)([\w.-]+/[\w.-]+?)(?:\.git)?/?$")
+
+
+def configured():
+    match = re.search(r"^repository:\s*\n\s+url:\s*(\S+)", CONFIG.read_text(), re.MULTILINE)
+    return match.group(1) if match else None
+
+
+def notebooks():
+    return sorted((ROOT / "book").glob("*.ipynb"))
+
+
+def setup_url(path):
+    """The URL in the notebook's set-up cell (its first code cell), or None."""
+    cells = json.loads(path.read_text())["cells"]
+    first = next((c for c in cells if c["cell_type"] == "code"), None)
+    match = first and SETUP.search("".join(first["source"]))
+    return match.group(2) if match else None
+
+
+def github_url(url):
+    """``https://github.com/owner/name`` for any spelling of a GitHub remote, else None."""
+    match = GITHUB.match(url.strip())
+    return f"https://github.com/{match.group(1)}" if match else None
+
+
+def set_url(url):
+    url = github_url(url) or url
+    if not re.match(r"^https://\S+$", url):
+        sys.exit(f"error: {url!r} is not an https URL of a repository")
+    text = CONFIG.read_text()
+    text, count = re.subn(r"^(repository:\s*\n\s+url:\s*)\S+", lambda m: m.group(1) + url, text, flags=re.MULTILINE)
+    if count != 1:
+        sys.exit("error: _config.yml has no `repository: url:` entry to set")
+    CONFIG.write_text(text)
+    for path in notebooks():
+        data = json.loads(path.read_text())
+        first = next(c for c in data["cells"] if c["cell_type"] == "code")
+        source = "".join(first["source"])
+        if not SETUP.search(source):
+            sys.exit(f"error: the first code cell of {path.name} has no `REPOSITORY = \"...\"` line")
+        first["source"] = SETUP.sub(lambda m: f'{m.group(1)}"{url}"', source).splitlines(keepends=True)
+        path.write_text(json.dumps(data, indent=1, ensure_ascii=False) + "\n")
+    print(f"repository: {url} (_config.yml and {len(notebooks())} notebooks)")
+
+
+def main(argv):
+    if argv == ["--check"]:
+        url = configured()
+        wrong = [p.name for p in notebooks() if setup_url(p) != url]
+        if wrong:
+            sys.exit(f"error: these notebooks do not install from {url}: {', '.join(wrong)}; run `make repo URL={url}`")
+        return
+    if argv == ["--from-git"]:
+        origin = subprocess.run(["git", "remote", "get-url", "origin"], cwd=ROOT, capture_output=True, text=True)
+        url = github_url(origin.stdout) if origin.returncode == 0 else None
+        if url and url != configured():
+            set_url(url)
+        return
+    if len(argv) != 1 or argv[0].startswith("-"):
+        sys.exit(__doc__)
+    set_url(argv[0])
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
