@@ -84,3 +84,13 @@ def test_plot_curve_closes_closed_curves():
     open_line = ddg.plot.plot_curve(ddg.DiscreteCurve([[0, 0], [1, 0], [1, 1]], closed=False), ax)
     assert len(open_line.get_xdata()) == 3
     plt.close(fig)
+
+
+def test_notebook_code_is_formatted_to_fit_the_page_column():
+    """79 characters: no code box scrolls sideways (ruff reads notebooks; config in pyproject.toml)."""
+    ruff = [sys.executable, "-m", "ruff"]
+    paths = [str(nb) for nb in NOTEBOOKS]
+    formatted = subprocess.run([*ruff, "format", "--check", *paths], cwd=ROOT, capture_output=True, text=True)
+    assert formatted.returncode == 0, formatted.stdout + formatted.stderr
+    linted = subprocess.run([*ruff, "check", "--output-format", "concise", *paths], cwd=ROOT, capture_output=True, text=True)
+    assert linted.returncode == 0, linted.stdout

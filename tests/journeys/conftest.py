@@ -21,7 +21,8 @@ OFFLINE_PIP = {"PIP_NO_INDEX": "1", "PIP_FIND_LINKS": str(WHEELHOUSE), "PIP_DISA
 
 def run(command, cwd=ROOT, env=None, timeout=600, check=True):
     """Run ``command`` (a list), return the CompletedProcess with stdout and stderr merged."""
-    full_env = {k: v for k, v in os.environ.items() if not k.startswith(("PYTEST", "MAKE", "MFLAGS"))}
+    # not what make or pytest set for themselves (PYTHONPATH points at this checkout's ddg)
+    full_env = {k: v for k, v in os.environ.items() if not k.startswith(("PYTEST", "MAKE", "MFLAGS", "PYTHONPATH"))}
     full_env.update(env or {})
     result = subprocess.run(command, cwd=cwd, env=full_env, timeout=timeout, text=True,
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
