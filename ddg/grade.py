@@ -35,6 +35,8 @@ import subprocess
 import sys
 import tempfile
 
+import numpy as np
+
 from . import checks
 from ._extras import missing
 
@@ -50,16 +52,17 @@ mount --bind "$WORK" "$WORK"
 mount -o remount,bind,rw "$WORK"
 exec setpriv --bounding-set=-all --inh-caps=-all --no-new-privs -- "$@"
 """
-"""Run by ``sh`` in new mount and network namespaces (``unshare --mount --net``): every mount
-read-only but the submission's folder ``$WORK``, then every capability dropped, so that nothing
-can be mounted writable again; the network namespace has only loopback, and it is down."""
+"""Run by ``sh`` in new mount, network and process namespaces (``unshare``): every mount read-only
+but the submission's folder ``$WORK``, then every capability dropped, so that nothing can be
+mounted writable again. The network namespace has only loopback, and it is down. When the grader
+ends the sandbox, every process in it ends too (kernels included)."""
 
 
 def _sandbox():
     """The command prefix that puts a submission in :data:`SANDBOX`, or ``[]`` where it cannot."""
     tools = [shutil.which(tool) for tool in ("unshare", "setpriv", "mount", "awk")]
     if sys.platform.startswith("linux") and hasattr(os, "geteuid") and os.geteuid() == 0 and all(tools):
-        return [tools[0], "--mount", "--net", "sh", "-c", SANDBOX, "sandbox"]
+        return [tools[0], "--mount", "--net", "--pid", "--fork", "--kill-child", "sh", "-c", SANDBOX, "sandbox"]
     return []
 
 
@@ -106,7 +109,7 @@ def run_one(notebook, jobs, cell_timeout, limit):
     """In the sandbox: execute ``notebook``, then the answers; print the raw results (one line)."""
     try:
         import nbformat
-        from jupyter_client import KernelManager
+        from jupyter_client import AsyncKernelManager
         from nbclient import NotebookClient
         from nbclient.exceptions import DeadKernelError
     except ImportError as error:
@@ -118,9 +121,10 @@ def run_one(notebook, jobs, cell_timeout, limit):
     skipped = set()
     for _ in range(4):  # a cell that kills the kernel is skipped, and the notebook runs again
         # sockets are files in this folder: no TCP, so the kernel works without a network
-        manager = KernelManager(kernel_name="python3", transport="ipc", ip=str(pathlib.Path("kernel").resolve()))
+        manager = AsyncKernelManager(kernel_name="python3", transport="ipc", ip=str(pathlib.Path("kernel").resolve()))
         client = NotebookClient(nbformat.v4.new_notebook(cells=[*code, evaluate]), km=manager,
-                                timeout=cell_timeout, interrupt_on_timeout=True, allow_errors=True)
+                                interrupt_on_timeout=True, allow_errors=True,
+                                timeout_func=lambda cell: limit * (len(jobs) + 1) if cell is evaluate else cell_timeout)
         try:
             with client.setup_kernel():
                 for i, cell in enumerate(code):
@@ -181,27 +185,33 @@ def grade_one(submission, table, secret, timeout, memory, cell_timeout):
                "PYDEVD_DISABLE_FILE_VALIDATION": "1", "TMPDIR": str(work), "WORK": str(work)}
         command = [*_sandbox(), sys.executable, "-m", "ddg.grade", "--run-one", str(work / "submission.ipynb"),
                    "--jobs-json", json.dumps(jobs), "--cell-timeout", str(cell_timeout)]
-        process = subprocess.Popen(command, cwd=work, env=env, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
-                                   stdin=subprocess.DEVNULL, preexec_fn=_limits(memory, timeout))
-        try:
-            output, _ = process.communicate(timeout=timeout)
-        except subprocess.TimeoutExpired:
-            os.killpg(process.pid, signal.SIGKILL)
-            output, _ = process.communicate()
-        finally:
+        with tempfile.TemporaryFile() as log:  # the grader's own file: only the runner's output lands here
+            process = subprocess.Popen(command, cwd=work, env=env, stdout=log, stderr=subprocess.STDOUT,
+                                       stdin=subprocess.DEVNULL, preexec_fn=_limits(memory, timeout))
             try:
-                os.killpg(process.pid, signal.SIGKILL)  # kernels and whatever else it started
-            except ProcessLookupError:
+                process.wait(timeout=timeout)
+            except subprocess.TimeoutExpired:
                 pass
+            finally:
+                try:
+                    os.killpg(process.pid, signal.SIGKILL)  # the sandbox, and with it every process inside
+                except ProcessLookupError:
+                    pass
+                process.wait()
+            log.seek(max(0, log.seek(0, os.SEEK_END) - (16 << 20)))
+            output = log.read()
     line = next((line for line in output.decode(errors="replace").splitlines()[::-1] if line.startswith(MARKER)), None)
-    report = json.loads(line[len(MARKER):]) if line else {"results": {}, "skipped": []}
+    try:
+        report = json.loads(line[len(MARKER):])
+    except (TypeError, ValueError):
+        report, line = {"results": {}, "skipped": []}, None
     points, feedback = {}, []
     if line is None:
         feedback.append(f"the notebook did not finish within {timeout} s or within the memory limit")
     for label, e in labels.items():
         raw = report["results"].get(label, {"error": "not graded: the notebook stopped before this exercise"})
         exercise = checks.EXERCISES[e["check"].removeprefix("check_")]
-        calls, context = exercise.draw(__import__("numpy").random.default_rng(seed_for(secret, label)))
+        calls, context = exercise.draw(np.random.default_rng(seed_for(secret, label)))
         verdict = checks.judge(exercise, calls, raw, context)
         verdict.name = e["answer"]
         points[label] = e["points"] if verdict else 0
