@@ -59,13 +59,15 @@ book-strict: $(ENV) $(VENDOR)
 	$(JB) build . --all -W -n --keep-going && echo "$$inputs" > _build/.inputs
 
 # First a browser (found or installed, or one line saying what to install), then the unit tests
-# and every notebook (nbval), the strict build, and what runs on the built site and on the
-# repository as a user would: tests/browser (Chromium, network cut) and tests/journeys.
+# and every notebook (nbval), the strict build, the student edition, and what runs on the built
+# sites and on the repository as a user would: tests/browser (Chromium, network cut) and
+# tests/journeys.
 test: $(ENV) $(VENDOR)
 	@$(PY) tools/browser.py >/dev/null
 	$(PY) -m pytest -n 2 --dist loadscope --nbval-lax --nbval-current-env tests book \
 		--ignore=tests/browser --ignore=tests/journeys
 	$(MAKE) book-strict
+	$(MAKE) student
 	$(PY) -m pytest -n 2 --dist loadfile tests/browser tests/journeys
 
 # JupyterLab on the chapter notebooks; it prints the URL to open (with its token).
@@ -73,9 +75,15 @@ lab: $(ENV)
 	@echo "Starting JupyterLab on book/ (Ctrl-C stops it); open the URL printed below."
 	$(BIN)/jupyter lab --notebook-dir=book --ip=127.0.0.1 $$([ "$$(id -u)" = 0 ] && echo --allow-root)
 
-# The student edition: every solution removed, coding answers replaced by starter code.
-student: $(ENV)
-	$(PY) -m ddg.edition --out _build/student $(if $(FORCE),--force)
+# The student edition: every solution removed, coding answers replaced by starter code, executed
+# and built like the book. _build/student/ is what a repository of student notebooks holds (set
+# STUDENT_REPO=https://github.com/owner/name for its launch buttons); _build/student/html the site.
+student: $(ENV) $(VENDOR)
+	$(PY) -m ddg.edition --out _build/student --vendor $(VENV)/vendor $(if $(FORCE),--force) \
+		$(if $(STUDENT_REPO),--student-repo $(STUDENT_REPO))
+	$(JB) build _build/student -W -n --keep-going
+	rm -rf _build/student/html && mv _build/student/_build/html _build/student/html
+	@echo "The student site is at $(CURDIR)/_build/student/html/index.html"
 
 bench: $(ENV)
 	$(PY) tests/benchmark.py

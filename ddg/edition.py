@@ -89,8 +89,10 @@ def student_notebook(nb):
         elif "solution" in tags:
             cell.source = starter(cell.source)
             cell.metadata["tags"] = [t for t in tags if t != "solution"] + ["starter"]
+            cell.metadata.pop("jupyter", None)  # folded with the solution in the book: open for students
             cells.append(cell)
         elif "check" in tags:
+            cell.metadata.pop("jupyter", None)
             cells.append(cell)
     if inside:
         raise ValueError("a {solution-start} block is never closed")
@@ -124,11 +126,44 @@ def _refuse_if_changed(folder, force, doing):
                  "(make ... FORCE=1) to discard them.")
 
 
-def write_edition(root, out, force=False):
-    """Write the student edition of the book at ``root`` into ``out`` (a buildable Jupyter Book).
+STUDENT_README = """# {title}: the student edition
+
+The chapter notebooks of the course without their solutions: each coding exercise has starter
+code and a check (`ddg.checks`) that says at once whether an answer is right, and what is wrong.
+
+- Run the notebooks: `pip install -r requirements.txt`, then `jupyter lab book/`.
+- In Colab or a plain Jupyter, a notebook's first cell installs the course's package `ddg`.
+
+This folder was written by `make student` in the course repository. To publish it, put everything
+but `html/` and `_build/` in the repository the course gives students (set `STUDENT_REPO` to its
+URL when running `make student`, so that the launch buttons lead there), and serve `html/` as the
+student site.
+"""
+
+
+def _configure(config, student_repo):
+    """The course's ``_config.yml``, made into the student edition's."""
+    config = config.replace('title: "', 'title: "Student edition: ', 1)
+    config = re.sub(r"execute_notebooks: \w+", "execute_notebooks: force", config)  # every page executed
+    config = config.replace("html_static_path: [.venv/vendor]", "html_static_path: [_vendor]")  # portable
+    config = re.sub(r"(exclude_patterns: \[)", r"\1html, _vendor, ", config)
+    if student_repo:
+        config = re.sub(r"^(repository:\s*\n\s+url:\s*)\S+", lambda m: m.group(1) + student_repo, config,
+                        flags=re.MULTILINE)
+    else:  # no repository of student notebooks: no launch or repository button rather than a wrong one
+        config = re.sub(r"^(\s+binderhub_url:).*$", r"\1 ''", config, flags=re.MULTILINE)
+        config = re.sub(r"^(\s+colab_url:).*$", r"\1 ''", config, flags=re.MULTILINE)
+        config = re.sub(r"^(\s+use_repository_button:).*$", r"\1 false", config, flags=re.MULTILINE)
+    return config
+
+
+def write_edition(root, out, force=False, vendor=None, student_repo=None):
+    """Write the student edition of the book at ``root`` into ``out``: a Jupyter Book to build,
+    and everything a repository of student notebooks needs (``ddg``, the pins, a README).
 
     Refuses (``SystemExit``) to overwrite notebooks changed since the edition wrote them, unless
-    ``force``.
+    ``force``. ``vendor`` is the folder of offline front-end assets (copied into ``_vendor``);
+    ``student_repo`` is the URL the launch buttons and the notebooks' set-up cells point at.
     """
     nbformat = _nbformat()
     root, out = pathlib.Path(root), pathlib.Path(out)
@@ -139,19 +174,27 @@ def write_edition(root, out, force=False):
     written = {}
     for path in sorted((root / "book").iterdir()):
         if path.suffix == ".ipynb":
+            nb = student_notebook(nbformat.read(path, as_version=4))
+            if student_repo:
+                for cell in nb.cells:
+                    cell.source = re.sub(r'^REPOSITORY = "[^"]*"', f'REPOSITORY = "{student_repo}"', cell.source,
+                                         flags=re.MULTILINE)
             target = out / "book" / path.name
-            nbformat.write(student_notebook(nbformat.read(path, as_version=4)), target)
+            nbformat.write(nb, target)
             written[path.name] = _sha256(target)
         elif path.is_file():
             shutil.copy(path, out / "book" / path.name)
     (out / "book" / MANIFEST).write_text(json.dumps(written, indent=1) + "\n")
     shutil.copy(root / "_toc.yml", out / "_toc.yml")
-    config = (root / "_config.yml").read_text()
-    config = re.sub(r"execute_notebooks: \w+", "execute_notebooks: 'off'", config)  # starters raise until solved
-    config = config.replace('title: "', 'title: "Student edition: ', 1)
-    vendor = (root / ".venv" / "vendor").resolve()  # the offline assets, wherever the edition is written
-    config = config.replace("html_static_path: [.venv/vendor]", f"html_static_path: [{vendor}]")
+    config = _configure((root / "_config.yml").read_text(), student_repo)
     (out / "_config.yml").write_text(config)
+    shutil.copytree(pathlib.Path(vendor or root / ".venv" / "vendor"), out / "_vendor")
+    shutil.copytree(root / "ddg", out / "ddg", ignore=shutil.ignore_patterns("__pycache__"))
+    for name in ("pyproject.toml", "requirements.txt"):
+        shutil.copy(root / name, out / name)
+    title = re.search(r'^title: "([^"]*)"', config, re.MULTILINE).group(1)
+    (out / "README.md").write_text(STUDENT_README.format(title=title))
+    (out / ".gitignore").write_text("html/\n_build/\n__pycache__/\n")
     return out
 
 
@@ -160,13 +203,15 @@ def main(argv=None):
     parser.add_argument("--root", default=".", help="the repository (with book/, _config.yml, _toc.yml)")
     parser.add_argument("--out", default="_build/student", help="where to write the edition")
     parser.add_argument("--force", action="store_true", help="overwrite or delete changed notebooks")
+    parser.add_argument("--vendor", help="the offline front-end assets (default: ROOT/.venv/vendor)")
+    parser.add_argument("--student-repo", help="URL of the repository of student notebooks (launch buttons)")
     parser.add_argument("--check-unchanged", metavar="FOLDER",
                         help="only check that no notebook in FOLDER was changed (before deleting it)")
     args = parser.parse_args(argv)
     if args.check_unchanged:
         _refuse_if_changed(pathlib.Path(args.check_unchanged), args.force, "deleting")
         return
-    out = write_edition(args.root, args.out, args.force)
+    out = write_edition(args.root, args.out, args.force, args.vendor, args.student_repo)
     print(f"student edition written to {out.resolve()}")
 
 
