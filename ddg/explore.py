@@ -1,39 +1,329 @@
-"""Live explorers: sliders over ``ddg``, for a running notebook.
+"""Explorers and animations: ``ddg`` computes every state, a small SVG scene draws it.
 
 >>> from ddg.explore import polygon_explorer, inflation_explorer, vertex_explorer
 >>> polygon_explorer()        # n, the curve and the formula; the error against the smooth curvature
 >>> inflation_explorer()      # eps, the shape and the inflation; the formula against the measured area
->>> vertex_explorer()         # move one vertex; psi_i, every k_i and the gradient of length respond
+>>> vertex_explorer()         # drag one vertex; psi_i, every k_i and the gradient of length respond
 
-Each function returns an ipywidgets box; its ``.explorer`` attribute is the object behind it, whose
-``refresh()`` recomputes and redraws (what a slider move costs, and what ``make bench`` times).
-A built book shows the state saved when it was built. Moving a slider there changes nothing,
-because no Python runs behind the page.
+One explorer, two places:
 
-Redrawing is kept fast by blitting: axes, ticks and labels depend only on the chosen shape, so they
-are drawn once per shape; a slider move redraws just the artists that change.
+* in a notebook with a running kernel the call shows live controls (ipywidgets): every change is
+  computed by ``ddg`` at once, for any value;
+* in the built book the same output shows a version that needs no kernel: the states a reader can
+  reach (a grid of control values) were computed by ``ddg`` when the book was built and are
+  embedded in the page (as gzip-compressed JSON), and the book's player script
+  (``book/_assets/ddg-player.js``) only looks them up and draws them. Printed, or without
+  JavaScript, the page shows the first state.
+
+A state is a :class:`Scene`: panels of lines, dots, arrows and text in data coordinates, plus a
+line of numbers and a text alternative that says what the picture shows. :class:`Animation` plays
+a list of scenes (the inflation and curve-shortening chapters use it).
 """
 
-import io
+import base64
+import gzip
+import html
+import itertools
+import json
 
 import numpy as np
 
 from . import smooth
 from ._extras import missing
-
-try:
-    import ipywidgets as widgets
-    import shapely
-    from matplotlib import ticker
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.collections import LineCollection
-    from matplotlib.figure import Figure
-    from matplotlib.patches import Polygon as PolygonPatch
-    from PIL import Image
-except ImportError as error:
-    raise missing("explore", error) from error
-
 from .curve import CURVATURES, INFLATIONS, DiscreteCurve, regular_polygon
+
+COLORS = {"blue": "#3b82f6", "orange": "#f59e0b", "green": "#10b981", "red": "#ef4444", "purple": "#a855f7",
+          "grey": "#9ca3af"}
+"""Mid-tone colours, readable on the light and on the dark theme. Text and axes use the page's own
+text colour (``currentColor``)."""
+
+RAMP = ("#2563eb", "#9ca3af", "#dc2626")
+"""The colour ramp of values in [0, 1] (curvature): blue, grey, red. The player uses the same."""
+
+
+def _ramp(value):
+    """The colour of ``value`` in [0, 1] on :data:`RAMP` (for the Python rendering)."""
+    value = min(max(float(value), 0.0), 1.0)
+    i = 0 if value <= 0.5 else 1
+    t = value * 2 - i
+    a, b = (np.array([int(c[k:k + 2], 16) for k in (1, 3, 5)]) for c in RAMP[i:i + 2])
+    return "#" + "".join(f"{int(round(x)):02x}" for x in a + t * (b - a))
+
+
+def _round(values, step):
+    """Values rounded to the decimals that resolve ``step`` (a fraction of a pixel), for short JSON."""
+    decimals = max(0, int(np.ceil(-np.log10(step))))
+    return [float(x) for x in np.round(np.asarray(values, dtype=float).ravel(), decimals)]
+
+
+class Scene:
+    """What one state of an explorer shows: panels with shapes, a line of numbers, a text alternative.
+
+    Each panel is a dict: its data box ``box = (x0, y0, x1, y1)`` (``y`` up), its size in pixels
+    ``px = (w, h)``, a ``title``, and optionally a ``margin`` in pixels (left, right, top, bottom;
+    default :data:`MARGIN`, room for axes). Shapes are given in data coordinates; text positions
+    may also be given in pixels (``space="px"``).
+    """
+
+    def __init__(self, panels, summary="", alt=""):
+        self.panels = panels  # list of {"box": (x0, y0, x1, y1), "px": (w, h), "title": str}
+        self.items = []
+        self.summary, self.alt = summary, alt
+        for i, panel in enumerate(panels):
+            if panel.get("title"):
+                self.text(i, panel["px"][0] / 2, -10, panel["title"], "middle", 14, space="px")
+
+    def _step(self, panel):
+        """A quarter of a pixel, in the panel's data units: finer than anyone can see."""
+        x0, y0, x1, y1 = self.panels[panel]["box"]
+        w, h = self.panels[panel]["px"]
+        return max((x1 - x0) / w, (y1 - y0) / h) / 4
+
+    def line(self, panel, points, color="currentColor", width=1.5, closed=False, fill=None, dash=None,
+             opacity=None):
+        points = np.asarray(points, dtype=float).reshape(-1, 2)
+        item = {"k": "line", "p": panel, "d": _round(points, self._step(panel)), "s": color, "w": width}
+        item.update({k: v for k, v in (("z", closed), ("f", fill), ("dash", dash), ("o", opacity)) if v})
+        self.items.append(item)
+
+    def dots(self, panel, points, color="currentColor", r=3, labels=None, handle=False, values=None):
+        """Dots; with ``labels`` each one can be focused and hovered to show its label; with
+        ``values`` (in [0, 1]) each is coloured on :data:`RAMP` instead of ``color``."""
+        item = {"k": "dots", "p": panel, "d": _round(points, self._step(panel)), "s": color, "r": r}
+        if values is not None:
+            item["c"] = _round(values, 0.01)
+        if labels is not None:
+            item["l"] = list(labels)
+        if handle:
+            item["h"] = True  # the point a reader drags (the vertex explorer)
+        self.items.append(item)
+
+    def arrows(self, panel, origins, vectors, color="currentColor", width=2):
+        tips = np.asarray(origins, dtype=float) + np.asarray(vectors, dtype=float)
+        self.items.append({"k": "arrows", "p": panel, "d": _round(np.hstack([np.asarray(origins, float), tips]),
+                                                                  self._step(panel)), "s": color, "w": width})
+
+    def bars(self, panel, x, heights, width, colors):
+        """Vertical bars from 0 to ``heights`` at the centres ``x``, each in its colour."""
+        step = self._step(panel)
+        self.items.append({"k": "bars", "p": panel, "x": _round(x, step), "h": _round(heights, step),
+                           "b": width, "c": list(colors)})
+
+    def text(self, panel, x, y, string, anchor="start", size=13, color="currentColor", space="data", rotate=0):
+        item = {"k": "text", "p": panel, "x": float(x), "y": float(y), "t": string, "a": anchor, "z": size, "s": color}
+        if space == "px":
+            item["px"] = True
+        if rotate:
+            item["r"] = rotate
+        self.items.append(item)
+
+    def axes(self, panel, xticks, yticks, xlabel="", ylabel="", xfmt="{:g}", yfmt="{:g}"):
+        """A frame with ticks and labels at the given values (in the panel's data coordinates)."""
+        x0, y0, x1, y1 = self.panels[panel]["box"]
+        self.line(panel, [(x0, y0), (x1, y0), (x1, y1), (x0, y1)], closed=True, width=0.8, opacity=0.6)
+        w, h = self.panels[panel]["px"]
+        for x in xticks:
+            self.line(panel, [(x, y0), (x, y0 + (y1 - y0) * 0.02)], width=0.8)
+            self.text(panel, (x - x0) / (x1 - x0) * w, h + 17, xfmt.format(x), "middle", 13, space="px")
+        for y in yticks:
+            self.line(panel, [(x0, y), (x0 + (x1 - x0) * 0.02, y)], width=0.8)
+            self.text(panel, -5, h - (y - y0) / (y1 - y0) * h + 4, yfmt.format(y), "end", 13, space="px")
+        if xlabel:
+            self.text(panel, w / 2, h + 36, xlabel, "middle", 14, space="px")
+        if ylabel:
+            self.text(panel, -34, h / 2, ylabel, "middle", 14, space="px", rotate=-90)
+
+
+# ------------------------------------------------------------------ SVG, here and in the page
+
+MARGIN = (46, 10, 28, 42)
+"""Panel margins in pixels (left, right, top, bottom): room for ticks, labels and the title."""
+
+
+def _to_px(panel, x, y):
+    x0, y0, x1, y1 = panel["box"]
+    w, h = panel["px"]
+    return (x - x0) / (x1 - x0) * w, h - (y - y0) / (y1 - y0) * h
+
+
+def _path(panel, flat, closed=False):
+    pts = [_to_px(panel, flat[i], flat[i + 1]) for i in range(0, len(flat), 2)]
+    return "M" + "L".join(f"{x:.1f},{y:.1f}" for x, y in pts) + ("Z" if closed else "")
+
+
+def svg(scene, panel_index):
+    """One panel of ``scene`` as an SVG element (what the player draws, for no-JS pages and widgets)."""
+    panel = scene.panels[panel_index]
+    w, h = panel["px"]
+    left, right, top, bottom = panel.get("margin", MARGIN)
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" class="ddg-panel" viewBox="{-left} {-top} {w + left + right} '
+           f'{h + top + bottom}" width="{w + left + right}" height="{h + top + bottom}" role="img" '
+           f'aria-label="{html.escape(panel.get("title", ""))}" font-family="sans-serif" fill="currentColor">']
+    for item in (i for i in scene.items if i["p"] == panel_index):
+        kind, d = item["k"], item.get("d", [])
+        if kind == "line":
+            style = f'stroke="{item["s"]}" stroke-width="{item["w"]}" fill="{item.get("f", "none")}"'
+            style += f' stroke-dasharray="{item["dash"]}"' if item.get("dash") else ""
+            style += f' opacity="{item["o"]}"' if item.get("o") else ""
+            out.append(f'<path d="{_path(panel, d, item.get("z"))}" {style}/>')
+        elif kind == "dots":
+            for j in range(0, len(d), 2):
+                x, y = _to_px(panel, d[j], d[j + 1])
+                color = _ramp(item["c"][j // 2]) if "c" in item else item["s"]
+                out.append(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="{item["r"]}" fill="{color}"/>')
+        elif kind == "arrows":
+            for j in range(0, len(d), 4):
+                (x, y), (u, v) = _to_px(panel, d[j], d[j + 1]), _to_px(panel, d[j + 2], d[j + 3])
+                out.append(f'<line x1="{x:.1f}" y1="{y:.1f}" x2="{u:.1f}" y2="{v:.1f}" stroke="{item["s"]}" '
+                           f'stroke-width="{item["w"]}"/><circle cx="{u:.1f}" cy="{v:.1f}" r="2.5" '
+                           f'fill="{item["s"]}"/>')
+        elif kind == "bars":
+            for x, height, color in zip(item["x"], item["h"], item["c"]):
+                (left, top), (right, bottom) = (_to_px(panel, x - item["b"] / 2, max(height, 0)),
+                                                _to_px(panel, x + item["b"] / 2, min(height, 0)))
+                out.append(f'<rect x="{left:.1f}" y="{top:.1f}" width="{right - left:.1f}" height="{bottom - top:.1f}" '
+                           f'fill="{color}"/>')
+        elif kind == "text":
+            x, y = (item["x"], item["y"]) if item.get("px") else _to_px(panel, item["x"], item["y"])
+            rotate = f' transform="rotate({item["r"]} {x:.1f} {y:.1f})"' if item.get("r") else ""
+            out.append(f'<text x="{x:.1f}" y="{y:.1f}" text-anchor="{item["a"]}" font-size="{item["z"]}" '
+                       f'fill="{item["s"]}"{rotate}>{html.escape(item["t"])}</text>')
+    out.append("</svg>")
+    return "".join(out)
+
+
+def _pack(scenes, controls, drag=None):
+    """The page's data: controls, panels, and every state as references into shared pools.
+
+    Items that several states share (the axes, a curve, a polygon drawn for three formulas) and
+    long number arrays are stored once; a state lists the indices of its items.
+    """
+    pool, pool_index, items, item_index, states, panel_sets, panel_index = [], {}, [], {}, {}, [], {}
+    for key, scene in scenes.items():
+        refs = []
+        for item in scene.items:
+            item = dict(item)
+            if len(item.get("d", [])) > 16:
+                text = json.dumps(item["d"])
+                item["d"] = {"$": pool_index.setdefault(text, len(pool))}
+                if item["d"]["$"] == len(pool):
+                    pool.append(json.loads(text))
+            text = json.dumps(item, sort_keys=True)
+            refs.append(item_index.setdefault(text, len(items)))
+            if refs[-1] == len(items):
+                items.append(item)
+        text = json.dumps(scene.panels, sort_keys=True)  # the panels' boxes and sizes, shared when equal
+        panels = panel_index.setdefault(text, len(panel_sets))
+        if panels == len(panel_sets):
+            panel_sets.append(json.loads(text))
+        states[key] = {"i": refs, "p": panels, "t": scene.summary, "a": scene.alt}
+    return {"controls": controls, "panels": panel_sets, "margin": MARGIN, "ramp": RAMP, "pool": pool,
+            "items": items, "states": states, "drag": drag}
+
+
+# ------------------------------------------------------------------ explorers
+
+
+class Explorer:
+    """Controls over ``ddg`` computations; a subclass defines them and :meth:`scene`.
+
+    ``controls`` is a list of dicts: ``name``, ``label``, ``type`` (``"select"``, ``"range"`` or
+    ``"frames"``), ``options`` (the values a static page offers) and ``value``. A live notebook
+    accepts any value in the range of a ``"range"`` control (``live_min``, ``live_max``, ``step``).
+    """
+
+    controls = []
+    drag = None
+    title = ""
+
+    def values(self):
+        return {c["name"]: c["value"] for c in self.controls}
+
+    def scene(self, **values):
+        raise NotImplementedError
+
+    def key(self, values):
+        return "|".join(str(values[c["name"]]) for c in self.controls)
+
+    def states(self):
+        """Every state a reader of the static page can reach, by key."""
+        names = [c["name"] for c in self.controls]
+        grid = itertools.product(*(c["options"] for c in self.controls))
+        return {self.key(dict(zip(names, combo))): self.scene(**dict(zip(names, combo))) for combo in grid}
+
+    def html(self):
+        """The kernel-free explorer: data for the player, and the first state drawn for no-JS and print.
+
+        A control's value that the static page does not offer is moved to the nearest one it does.
+        """
+        values = self.values()
+        for c in self.controls:
+            if c["type"] == "range" and values[c["name"]] not in c["options"]:
+                values[c["name"]] = min(c["options"], key=lambda option: abs(option - values[c["name"]]))
+        first = self.scene(**values)
+        data = _pack(self.states(), self.controls, self.drag)
+        data["value"] = self.key(values)
+        data["title"] = self.title
+        figures = "".join(svg(first, i) for i in range(len(first.panels)))
+        blob = base64.b64encode(gzip.compress(json.dumps(data, separators=(",", ":")).encode(), mtime=0)).decode()
+        return (f'<div class="ddg-explorer" data-title="{html.escape(self.title)}">'
+                f'<div class="ddg-static" role="img" aria-label="{html.escape(first.alt)}">{figures}'
+                f'<p class="ddg-summary">{first.summary}</p></div>'
+                f'<script type="application/gzip+base64" class="ddg-data">{blob}</script></div>')
+
+    def widget(self):
+        """Live controls (ipywidgets) that recompute the scene with ``ddg`` on every change."""
+        try:
+            import ipywidgets as widgets
+        except ImportError as error:
+            raise missing("explore", error) from error
+        inputs = {}
+        for c in self.controls:
+            if c["type"] == "select":
+                inputs[c["name"]] = widgets.Dropdown(options=c["options"], value=c["value"], description=c["label"])
+            elif c["type"] == "range":
+                low, high = c.get("live_min", c["options"][0]), c.get("live_max", c["options"][-1])
+                step = c.get("step", 1)
+                kind = widgets.IntSlider if isinstance(step, int) else widgets.FloatSlider
+                inputs[c["name"]] = kind(value=c["value"], min=low, max=high, step=step, description=c["label"],
+                                         continuous_update=False)
+            else:  # frames
+                inputs[c["name"]] = widgets.IntSlider(value=c["value"], min=0, max=len(c["options"]) - 1,
+                                                      description=c["label"])
+        picture, summary = widgets.HTML(), widgets.HTML()
+
+        def redraw(_=None):
+            scene = self.scene(**{name: control.value for name, control in inputs.items()})
+            picture.value = (f'<div class="ddg-static" role="img" aria-label="{html.escape(scene.alt)}">'
+                             + "".join(svg(scene, i) for i in range(len(scene.panels))) + "</div>")
+            summary.value = scene.summary
+
+        for control in inputs.values():
+            control.observe(redraw, names="value")
+        redraw()
+        box = widgets.VBox([widgets.HBox(list(inputs.values())), summary, picture])
+        box.explorer = self
+        return box
+
+    def _repr_mimebundle_(self, **kwargs):
+        """Live widgets where a kernel runs; the kernel-free explorer in the book (``text/html``)."""
+        bundle = {"text/html": self.html(), "text/plain": f"<{type(self).__name__}: {self.title}>"}
+        try:
+            box = self.widget()
+        except ImportError:
+            return bundle
+        return {**box._repr_mimebundle_(**kwargs), **{k: v for k, v in bundle.items() if k != "text/plain"}}
+
+
+def _nice_ticks(low, high, count=5):
+    """About ``count`` round tick values between ``low`` and ``high``."""
+    step = 10 ** np.floor(np.log10((high - low) / count))
+    for factor in (1, 2, 5, 10):
+        if (high - low) / (step * factor) <= count:
+            step *= factor
+            break
+    return list(np.arange(np.ceil(low / step), np.floor(high / step) + 1) * step)
+
 
 SHAPES = {
     "circle": smooth.circle(1.0),
@@ -44,274 +334,230 @@ SHAPES = {
 """Smooth closed curves (clockwise) for the polygon explorer."""
 
 
-def _star(points=5, inner=0.5):
-    angle = np.arange(2 * points) * np.pi / points
-    radius = np.where(np.arange(2 * points) % 2 == 0, 1.0, inner)
-    return DiscreteCurve(np.stack([radius * np.cos(angle), -radius * np.sin(angle)], axis=1))
+class PolygonExplorer(Explorer):
+    """Sample a smooth curve with ``n`` vertices; colour the polygon by a discrete curvature."""
+
+    title = "Polygons on a smooth curve"
+    N_STATIC = [*range(3, 25), 32, 48, 64, 96, 128, 192, 256]
+
+    def __init__(self, n=12, shape="ellipse", kind="angle"):
+        self.controls = [
+            {"name": "shape", "label": "curve", "type": "select", "options": list(SHAPES), "value": shape},
+            {"name": "n", "label": "vertices n", "type": "range", "options": self.N_STATIC, "value": n,
+             "live_min": 3, "live_max": 1000, "step": 1},
+            {"name": "kind", "label": "formula", "type": "select", "options": list(CURVATURES), "value": kind},
+        ]
+
+    def compute(self, n, shape, kind):
+        """The polygon, its curvature ``k``, the smooth ``kappa`` at the same points, and the errors."""
+        curve = SHAPES[shape]
+        t = curve.sample_parameters(int(n))
+        polygon = DiscreteCurve(curve.position(t))
+        k, kappa = polygon.curvature(kind), curve.curvature(t)
+        return polygon, t, k, kappa, np.abs(k - kappa)
+
+    def scene(self, n, shape, kind):
+        curve = SHAPES[shape]
+        polygon, t, k, kappa, error = self.compute(n, shape, kind)
+        tt = np.linspace(curve.t0, curve.t1, 240)
+        outline = curve.position(tt)
+        pad = 0.12 * np.ptp(outline, axis=0).max()
+        (x0, y0), (x1, y1) = outline.min(axis=0) - pad, outline.max(axis=0) + pad
+        size = 270
+        w, h = (size, size * (y1 - y0) / (x1 - x0)) if x1 - x0 >= y1 - y0 else (size * (x1 - x0) / (y1 - y0), size)
+        scene = Scene([{"box": (x0, y0, x1, y1), "px": (round(w), round(h)), "title": f"{curve.name}: kᵢ by colour"},
+                       {"box": (0, -12, 1, 1), "px": (260, 220), "title": "error |kᵢ − κ(tᵢ)|"}])
+        scene.line(0, outline, color=COLORS["grey"], width=1, closed=True)
+        spread = max(np.ptp(curve.curvature(tt)), 0.5 * np.abs(curve.curvature(tt)).max())
+        low, high = curve.curvature(tt).min() - 0.3 * spread, curve.curvature(tt).max() + 0.3 * spread
+        scene.line(0, polygon.vertices, width=0.8, closed=True, opacity=0.5)
+        scene.dots(0, polygon.vertices, r=3.5, values=(k - low) / (high - low))
+        scene.axes(1, [0, 0.5, 1], list(range(-12, 1, 3)), "parameter tᵢ / 2π", "log₁₀ error", yfmt="{:.0f}")
+        scene.line(1, np.stack([t / (2 * np.pi), np.log10(np.maximum(error, 1e-12))], axis=1),
+                   color=COLORS["blue"], width=1.5)
+        total = polygon.total_curvature(kind) / (2 * np.pi)
+        scene.summary = (f"{curve.name}, n = {n}, {kind} formula: largest |kᵢ − κ(tᵢ)| = {error.max():.3e}; "
+                         f"⟨k, 1⟩ / 2π = {total:.6f}")
+        scene.alt = (f"The {curve.name} with a polygon of {n} vertices on it, coloured by the {kind} curvature "
+                     f"(blue low, red high), and each vertex's error on a log scale, at most {error.max():.1e}.")
+        return scene
 
 
 POLYGONS = {
     "convex pentagon": DiscreteCurve([[0.0, 0.0], [0.3, 1.5], [1.8, 2.0], [3.0, 1.0], [2.4, -0.4]]),
-    "non-convex star": _star(),
+    "non-convex star": DiscreteCurve(np.stack([np.where(np.arange(10) % 2 == 0, 1.0, 0.5) * np.cos(np.arange(10) * np.pi / 5),
+                                               -np.where(np.arange(10) % 2 == 0, 1.0, 0.5) * np.sin(np.arange(10) * np.pi / 5)],
+                                              axis=1)),
 }
 """Closed clockwise polygons for the inflation explorer."""
 
 
-class _Explorer:
-    """Common plumbing: controls, a figure rendered to PNG by blitting, a summary line.
-
-    A subclass creates its figure in ``background(key)`` (everything that depends only on ``key``,
-    for example the shape) and lists the artists that change in ``self.moving``; ``update(...)``
-    sets their data and ``self.summary``, and returns the key.
-    """
-
-    def __init__(self, controls, figsize):
-        self.controls = controls
-        self.figsize = figsize
-        self.summary = ""
-        self._key = self._background = None
-
-    def _build(self, key):
-        """A new figure for ``key``: its fixed parts, and the artists that move (``self.moving``)."""
-        self.fig = Figure(figsize=self.figsize, dpi=72)  # no pyplot: never shown twice
-        self.canvas = FigureCanvasAgg(self.fig)
-        self.moving = []
-        self.background(key)
-        for artist in self.moving:
-            artist.set_animated(True)  # left out of the full draw, drawn on top of the background
-        self._key, self._background = key, None
-
-    def png(self):
-        """The current picture as PNG bytes: the cached background, the moving artists on top."""
-        if self._background is None:
-            self.canvas.draw()
-            self._background = self.canvas.copy_from_bbox(self.fig.bbox)
-        self.canvas.restore_region(self._background)
-        for artist in self.moving:
-            self.fig.draw_artist(artist)
-        buffer = io.BytesIO()
-        Image.fromarray(np.asarray(self.canvas.buffer_rgba())).save(buffer, format="png", compress_level=1)
-        return buffer.getvalue()
-
-    def refresh(self):
-        """Recompute with the controls' current values and redraw: what one slider move costs."""
-        values = {name: control.value for name, control in self.controls.items()}
-        key = self.key(**values)
-        if key != self._key:
-            self._build(key)
-        self.update(**values)
-        return self.png()
-
-    def widget(self):
-        image = widgets.Image(value=self.refresh(), format="png")
-        summary = widgets.HTML(self.summary)
-
-        def changed(_):
-            image.value = self.refresh()
-            summary.value = self.summary
-
-        for control in self.controls.values():
-            control.observe(changed, names="value")
-        box = widgets.VBox([widgets.HBox(list(self.controls.values())), summary, image])
-        box.explorer = self
-        return box
+def measured_region(polygon, eps, method, quad_segs=256):
+    """The inflated region, measured independently by shapely: round joins (the Minkowski sum),
+    or mitre joins (the offset)."""
+    try:
+        import shapely
+    except ImportError as error:
+        raise missing("explore", error) from error
+    region = shapely.Polygon(polygon.vertices)
+    if method == "minkowski":
+        return region.buffer(eps, quad_segs=quad_segs)
+    return region.buffer(eps, join_style="mitre", mitre_limit=1e6)
 
 
-class PolygonExplorer(_Explorer):
-    """Sample a smooth curve with ``n`` vertices; colour the polygon by a discrete curvature."""
-
-    def __init__(self, n=12, shape="ellipse", kind="angle"):
-        super().__init__({
-            "n": widgets.IntSlider(value=n, min=3, max=1000, description="n", continuous_update=False),
-            "shape": widgets.Dropdown(options=list(SHAPES), value=shape, description="curve"),
-            "kind": widgets.Dropdown(options=list(CURVATURES), value=kind, description="formula"),
-        }, figsize=(10, 4))
-
-    def key(self, n, shape, kind):
-        return shape
-
-    def background(self, shape):
-        curve = SHAPES[shape]
-        ax_curve, ax_error = self.fig.subplots(1, 2)
-        self.fig.subplots_adjust(left=0.05, right=0.97, bottom=0.13, top=0.9, wspace=0.25)
-        tt = np.linspace(curve.t0, curve.t1, 400)
-        points = curve.position(tt)
-        ax_curve.plot(*points.T, color="0.6", lw=1, label="smooth curve")
-        pad = 0.15 * np.ptp(points, axis=0).max()
-        ax_curve.set_xlim(points[:, 0].min() - pad, points[:, 0].max() + pad)
-        ax_curve.set_ylim(points[:, 1].min() - pad, points[:, 1].max() + pad)
-        ax_curve.set_aspect("equal")
-        kappa = curve.curvature(tt)
-        spread = max(np.ptp(kappa), 0.5 * np.abs(kappa).max())
-        self.segments = LineCollection([], cmap="coolwarm", linewidths=3)
-        self.segments.set_clim(kappa.min() - 0.3 * spread, kappa.max() + 0.3 * spread)  # fixed: colours compare
-        ax_curve.add_collection(self.segments)
-        self.fig.colorbar(self.segments, ax=ax_curve, label="$k_i$ on each vertex's dual edge")
-        ax_curve.legend(loc="upper right", fontsize=8)
-        ax_curve.set_title(curve.name)
-        self.error_line, = ax_error.semilogy([0.5], [1.0], ".-", ms=3)
-        # plain "1e-05" tick labels: fixed limits, so the axis is drawn once per curve
-        ax_error.set_xlim(0, 1)
-        ax_error.set_ylim(1e-12, 10)
-        ax_error.yaxis.set_major_formatter(ticker.FuncFormatter(lambda y, _: f"{y:.0e}"))
-        ax_error.yaxis.set_minor_formatter(ticker.NullFormatter())
-        ax_error.set_xlabel("parameter $t_i / 2\\pi$")
-        ax_error.set_ylabel("$|k_i - \\kappa(t_i)|$")
-        ax_error.set_title("error against the smooth curvature")
-        self.moving = [self.segments, self.error_line]
-
-    def update(self, n, shape, kind):
-        curve = SHAPES[shape]
-        t = curve.sample_parameters(n)
-        polygon = DiscreteCurve(curve.position(t))
-        k, kappa = polygon.curvature(kind), curve.curvature(t)
-        v = polygon.vertices
-        mid_prev = v - np.roll(polygon.edges, 1, axis=0) / 2  # dual edge: midpoint, vertex, midpoint
-        mid_next = v + polygon.edges / 2
-        self.segments.set_segments(np.stack([mid_prev, v, mid_next], axis=1))
-        self.segments.set_array(k)
-        error = np.abs(k - kappa)
-        self.error_line.set_data(t / (2 * np.pi), np.maximum(error, 1e-12))
-        self.summary = (f"{curve.name}, n = {n}, {kind} formula: max |k<sub>i</sub> &minus; &kappa;(t<sub>i</sub>)| = "
-                        f"{error.max():.3e}; &lang;k, 1&rang; / 2&pi; = {polygon.total_curvature(kind) / (2 * np.pi):.6f}")
-        return error.max()
-
-
-class InflationExplorer(_Explorer):
+class InflationExplorer(Explorer):
     """Inflate a polygon by ``eps``; compare the formula's area with the region's measured area."""
 
+    title = "Inflation"
+
     def __init__(self, eps=0.3, shape="non-convex star", method="minkowski"):
-        super().__init__({
-            "eps": widgets.FloatSlider(value=eps, min=0.0, max=1.0, step=0.01, description="ε", continuous_update=False),
-            "shape": widgets.Dropdown(options=list(POLYGONS), value=shape, description="shape"),
-            "method": widgets.Dropdown(options=list(INFLATIONS), value=method, description="inflation"),
-        }, figsize=(6, 5))
+        self.controls = [
+            {"name": "shape", "label": "shape", "type": "select", "options": list(POLYGONS), "value": shape},
+            {"name": "eps", "label": "ε", "type": "range", "options": [round(e, 2) for e in np.arange(0, 1.0001, 0.05)],
+             "value": eps, "live_min": 0.0, "live_max": 1.0, "step": 0.01},
+            {"name": "method", "label": "inflation", "type": "select", "options": list(INFLATIONS), "value": method},
+        ]
 
-    def key(self, eps, shape, method):
-        return shape
-
-    @staticmethod
-    def measured_region(polygon, eps, method):
-        """The inflated region, measured independently by shapely (round join, or mitre join)."""
-        region = shapely.Polygon(polygon.vertices)
-        if method == "minkowski":
-            return region.buffer(eps, quad_segs=256)
-        return region.buffer(eps, join_style="mitre", mitre_limit=1e6)
-
-    def background(self, shape):
+    def compute(self, eps, shape, method):
         polygon = POLYGONS[shape]
-        ax = self.fig.subplots()
-        self.fig.subplots_adjust(left=0.1, right=0.97, bottom=0.22, top=0.93)
-        largest = self.measured_region(polygon, 1.0, "minkowski").bounds
-        ax.set_xlim(largest[0] - 0.1, largest[2] + 0.1)
-        ax.set_ylim(largest[1] - 0.1, largest[3] + 0.1)
-        ax.set_aspect("equal")
-        self.region = PolygonPatch(np.zeros((3, 2)), color="C1", alpha=0.45, label="inflated region (measured)")
-        ax.add_patch(self.region)
-        polygon_patch = PolygonPatch(polygon.vertices, color="0.6", label="polygon")
-        ax.add_patch(polygon_patch)
-        self.boundary, = ax.plot([], [], "k--", lw=0.8, label="$\\Gamma + \\varepsilon N$ (ddg.inflate)")
-        ax.legend(loc="upper left", fontsize=8, bbox_to_anchor=(0, -0.08), ncol=2)
-        ax.set_title(shape)
-        self.moving = [self.region, polygon_patch, self.boundary]  # drawn in this order
+        region = measured_region(polygon, eps, method)
+        return polygon, region, polygon.inflated_area(eps, method)
 
-    def update(self, eps, shape, method):
-        polygon = POLYGONS[shape]
-        region = self.measured_region(polygon, eps, method)
-        formula = polygon.inflated_area(eps, method)
-        self.region.set_xy(np.asarray(region.exterior.coords))
-        self.region.set_color("C1" if method == "minkowski" else "C2")
-        boundary = polygon.inflate(eps, method).vertices if eps > 0 else polygon.vertices
-        self.boundary.set_data(*np.vstack([boundary, boundary[:1]]).T)
-        self.summary = (f"{method}, &epsilon; = {eps:.2f}: formula A<sub>0</sub> + &epsilon;L + &epsilon;&sup2;/2 &lang;k, 1&rang; "
-                        f"= {formula:.6f}; measured {region.area:.6f}; difference {region.area - formula:+.2e}")
-        return formula, region.area
+    def scene(self, eps, shape, method):
+        polygon, region, formula = self.compute(eps, shape, method)
+        x0, y0, x1, y1 = measured_region(polygon, 1.0, "minkowski", 16).bounds
+        scene = Scene([{"box": (x0 - 0.1, y0 - 0.1, x1 + 0.1, y1 + 0.1),
+                        "px": (320, round(320 * (y1 - y0 + 0.2) / (x1 - x0 + 0.2))), "title": shape}])
+        color = COLORS["orange"] if method == "minkowski" else COLORS["green"]
+        drawn = measured_region(polygon, eps, method, quad_segs=8) if eps > 0 else None
+        if drawn is not None:
+            scene.line(0, np.asarray(drawn.exterior.coords), color=color, fill=color, opacity=0.45, width=1, closed=True)
+        scene.line(0, polygon.vertices, color=COLORS["grey"], fill=COLORS["grey"], width=1, closed=True)
+        if eps > 0:
+            boundary = polygon.inflate(eps, method).vertices
+            step = max(1, len(boundary) // 200)  # a drawing: about 200 points are plenty
+            scene.line(0, boundary[::step], color="currentColor", width=1, closed=True, dash="4 3")
+        scene.summary = (f"{method}, ε = {eps:.2f}: formula A₀ + εL + ε²/2 ⟨k, 1⟩ = {formula:.6f}; "
+                         f"measured {region.area:.6f}; difference {region.area - formula:+.2e}")
+        scene.alt = (f"The {shape} (grey) inflated by ε = {eps:.2f} with the {method} inflation: the region it covers, "
+                     f"measured by shapely (shaded), and the boundary ddg computes (dashed). The formula gives "
+                     f"{formula:.4f}, the region measures {region.area:.4f}.")
+        return scene
 
 
-class VertexExplorer(_Explorer):
-    """Move vertex ``j`` of a hexagon; watch its turning angle, curvatures and the gradient of length."""
+class VertexExplorer(Explorer):
+    """Drag vertex ``j`` of a regular hexagon; watch its turning angle, curvatures and the gradient of length."""
+
+    title = "One vertex"
+    GRID = np.round(np.arange(-1.5, 1.5001, 0.15), 2) + 0.0  # + 0.0: no -0.0, whose key would differ
 
     def __init__(self, dx=0.0, dy=0.0, j=2):
-        super().__init__({
-            "dx": widgets.FloatSlider(value=dx, min=-1.5, max=1.5, step=0.02, description=f"move v{j}: x", continuous_update=False),
-            "dy": widgets.FloatSlider(value=dy, min=-1.5, max=1.5, step=0.02, description="y", continuous_update=False),
-        }, figsize=(10, 4.2))
         self.base = regular_polygon(6, 1.0).vertices.copy()
         self.j = j
+        self.controls = [
+            {"name": "dx", "label": f"move v{j}: x", "type": "range", "options": list(self.GRID), "value": dx,
+             "live_min": -1.5, "live_max": 1.5, "step": 0.02},
+            {"name": "dy", "label": "y", "type": "range", "options": list(self.GRID), "value": dy,
+             "live_min": -1.5, "live_max": 1.5, "step": 0.02},
+        ]
+        self.drag = {"panel": 0, "x": "dx", "y": "dy", "origin": [float(c) for c in self.base[j]]}
 
-    def key(self, dx, dy):
-        return "hexagon"
-
-    def background(self, key):
-        ax, ax_bars = self.fig.subplots(1, 2, width_ratios=[1.2, 1])
-        self.fig.subplots_adjust(left=0.05, right=0.98, bottom=0.1, top=0.9, wspace=0.2)
-        ax.set_aspect("equal")
-        ax.set_xlim(-2.6, 2.6)
-        ax.set_ylim(-2.6, 2.6)
-        self.line, = ax.plot([], [], "ko-", ms=4)
-        self.marker, = ax.plot([], [], "o", color="C3", ms=9)
-        self.arrows = ax.quiver(*self.base.T, *np.zeros_like(self.base).T, color="C3", angles="xy",
-                                scale_units="xy", scale=1, width=0.006, label="$0.3\\,(\\nabla L)_i$")
-        ax.legend(loc="lower left", fontsize=8)
-        ax.set_title(f"move $v_{self.j}$: the polygon and its gradient of length")
-        width = 0.25
-        self.bars = {kind: ax_bars.bar(np.arange(3) + offset, np.zeros(3), width, label=kind)
-                     for offset, kind in zip((-width, 0, width), CURVATURES)}
-        self.norms = ax_bars.bar(np.arange(3), np.zeros(3), 3 * width, fill=False, edgecolor="k", label="$|\\nabla L|$")
-        ax_bars.axhline(0, color="k", lw=0.8)
-        neighbours = np.array([self.j - 1, self.j, self.j + 1]) % len(self.base)
-        ax_bars.set_xticks(np.arange(3), [f"$v_{i}$" for i in neighbours])
-        ax_bars.set_ylim(-6, 6)
-        ax_bars.set_ylabel("$k_i$ (clipped to ±6)")
-        ax_bars.legend(fontsize=8, loc="lower right")
-        ax_bars.set_title(f"$k_i$ at $v_{self.j}$ and its neighbours")
-        self.moving = [self.line, self.marker, self.arrows,
-                       *(bar for container in (*self.bars.values(), self.norms) for bar in container)]
-
-    def update(self, dx, dy):
+    def compute(self, dx, dy):
+        """The polygon with ``v_j`` moved, its curvatures by formula (None where undefined), its gradient."""
         v = self.base.copy()
         v[self.j] += (dx, dy)
+        polygon = DiscreteCurve(v)  # raises ValueError where v_j lands on a neighbour
+        ks = {}
+        for kind in CURVATURES:
+            try:
+                ks[kind] = polygon.curvature(kind)
+            except ValueError:  # the tangent formula where the curve turns straight back
+                ks[kind] = None
+        return polygon, ks, polygon.length_gradient()
+
+    def scene(self, dx, dy):
         j = self.j
+        scene = Scene([{"box": (-2.2, -2.2, 2.2, 2.2), "px": (270, 270), "title": f"drag v{j}: ∇L at each vertex"},
+                       {"box": (-0.6, -6, 2.6, 6), "px": (240, 270), "title": f"kᵢ at v{j - 1}, v{j}, v{j + 1}"}])
         try:
-            polygon = DiscreteCurve(v)
-            tangent_ok = True
-            polygon.curvature("tangent")
-        except ValueError as problem:  # v_j moved onto a neighbour, or the curve turns straight back
-            if "tangent" not in str(problem):
-                self.summary = f"<b>not a discrete curve:</b> {problem}"
-                return None
-            tangent_ok = False
-        grad = polygon.length_gradient()
-        self.line.set_data(*np.vstack([v, v[:1]]).T)
-        self.marker.set_data([v[j, 0]], [v[j, 1]])
-        self.arrows.set_offsets(v)
-        self.arrows.set_UVC(*(0.3 * grad).T)
+            polygon, ks, grad = self.compute(dx, dy)
+        except ValueError as problem:
+            v = self.base.copy()
+            v[j] += (dx, dy)
+            scene.line(0, v, closed=True, width=1.5, dash="3 3")
+            scene.dots(0, v[j:j + 1], color=COLORS["red"], r=7, handle=True, labels=[f"v{j}: {problem}"])
+            scene.summary = f"<b>not a discrete curve:</b> {html.escape(str(problem))}"
+            scene.alt = f"Vertex v{j} sits on a neighbour: {problem}."
+            return scene
+        v, psi = polygon.vertices, polygon.turning_angles
+        scene.line(0, v, closed=True, width=1.5)
+        scene.arrows(0, v, 0.3 * grad, color=COLORS["red"])
+        for i in range(len(v)):
+            values = ", ".join(f"{kind} {ks[kind][i]:+.4f}" if ks[kind] is not None else f"{kind} diverges"
+                               for kind in CURVATURES)
+            scene.dots(0, v[i:i + 1], r=7 if i == j else 4, color=COLORS["red"] if i == j else "currentColor",
+                       labels=[f"v{i}: ψ = {psi[i]:+.4f}; k: {values}"], handle=i == j)
         neighbours = np.array([j - 1, j, j + 1]) % len(v)
-        ks = {kind: polygon.curvature(kind) for kind in CURVATURES if kind != "tangent" or tangent_ok}
-        for kind, container in self.bars.items():
-            heights = ks[kind][neighbours] if kind in ks else np.zeros(3)
-            for bar, height in zip(container, np.clip(heights, -6, 6)):
-                bar.set_height(height)
-        for bar, height in zip(self.norms, np.linalg.norm(grad[neighbours], axis=1)):
-            bar.set_height(min(height, 6))
-        self.summary = (f"at v<sub>{j}</sub>: &psi; = {polygon.turning_angles[j]:+.4f} "
-                        f"({np.degrees(polygon.turning_angles[j]):+.1f}&deg;), "
-                        + ", ".join(f"k<sub>{kind}</sub> = {ks[kind][j]:+.4f}" for kind in ks)
-                        + ("" if tangent_ok else ", k<sub>tangent</sub> diverges (&psi; = &pi;)")
-                        + f", |&nabla;L| = {np.linalg.norm(grad[j]):.4f}; L = {polygon.length:.4f}")
-        return ks
+        scene.axes(1, [], [-6, -3, 0, 3, 6], "", "kᵢ (clipped to ±6)")
+        scene.line(1, [(-0.6, 0), (2.6, 0)], width=0.8)
+        x, heights, colors = [], [], []
+        for slot, i in enumerate(neighbours):
+            scene.text(1, (slot + 0.6) / 3.2 * 240, 270 + 17, f"v{i}", "middle", 13, space="px")
+            for offset, (kind, color) in enumerate(zip(CURVATURES, (COLORS["blue"], COLORS["orange"], COLORS["green"]))):
+                if ks[kind] is not None:
+                    x.append(slot + (offset - 1) * 0.25)
+                    heights.append(float(np.clip(ks[kind][i], -6, 6)))
+                    colors.append(color)
+            norm = min(float(np.linalg.norm(grad[i])), 6)
+            scene.line(1, [(slot - 0.4, norm), (slot + 0.4, norm)], width=2, dash="5 3")
+        scene.bars(1, x, heights, 0.22, colors)
+        scene.text(1, 4, 14, "angle", "start", 13, COLORS["blue"], space="px")
+        scene.text(1, 50, 14, "sine", "start", 13, COLORS["orange"], space="px")
+        scene.text(1, 86, 14, "tangent", "start", 13, COLORS["green"], space="px")
+        scene.text(1, 146, 14, "- - |∇L|", "start", 13, space="px")
+        tangent = (f"k tangent = {ks['tangent'][j]:+.4f}" if ks["tangent"] is not None
+                   else "k tangent diverges (ψ = π)")
+        scene.summary = (f"at v{j}: ψ = {psi[j]:+.4f} ({np.degrees(psi[j]):+.1f}°), k angle = {ks['angle'][j]:+.4f}, "
+                         f"k sine = {ks['sine'][j]:+.4f}, {tangent}, |∇L| = {np.linalg.norm(grad[j]):.4f}; "
+                         f"L = {polygon.length:.4f}")
+        scene.alt = (f"A hexagon with v{j} moved by ({dx:+.2f}, {dy:+.2f}), arrows along the gradient of length, and "
+                     f"bars of the three curvatures at v{j} and its neighbours; at v{j}, ψ = {psi[j]:+.3f}.")
+        return scene
+
+
+class Animation(Explorer):
+    """Scenes played in order: a play/pause button and a slider to scrub through them.
+
+    ``frames`` is a list of :class:`Scene` objects (all with the same panels), computed by the
+    caller with ``ddg``; ``label`` names the quantity that changes (``"ε"``, ``"t"``), ``values``
+    its value in each frame.
+    """
+
+    def __init__(self, frames, label, values, title="", interval=250):
+        self.frames, self.title, self.interval = list(frames), title, interval
+        self.controls = [{"name": "frame", "label": label, "type": "frames", "options": list(range(len(self.frames))),
+                          "value": 0, "shown": [f"{v:g}" for v in values], "interval": interval}]
+
+    def scene(self, frame):
+        return self.frames[int(frame)]
+
+    def states(self):
+        return {str(i): frame for i, frame in enumerate(self.frames)}
+
+    def key(self, values):
+        return str(values["frame"])
 
 
 def polygon_explorer(n=12, shape="ellipse", kind="angle"):
-    """Sliders for ``n``, the curve (``ddg.explore.SHAPES``) and the formula (``ddg.CURVATURES``)."""
-    return PolygonExplorer(n, shape, kind).widget()
+    """Controls for ``n``, the curve (``ddg.explore.SHAPES``) and the formula (``ddg.CURVATURES``)."""
+    return PolygonExplorer(n, shape, kind)
 
 
 def inflation_explorer(eps=0.3, shape="non-convex star", method="minkowski"):
-    """Sliders for ``eps``, the shape (``ddg.explore.POLYGONS``) and the inflation (``ddg.INFLATIONS``)."""
-    return InflationExplorer(eps, shape, method).widget()
+    """Controls for ``eps``, the shape (``ddg.explore.POLYGONS``) and the inflation (``ddg.INFLATIONS``)."""
+    return InflationExplorer(eps, shape, method)
 
 
 def vertex_explorer(dx=0.0, dy=0.0):
-    """Two sliders move one vertex of a regular hexagon."""
-    return VertexExplorer(dx, dy).widget()
+    """Move one vertex of a regular hexagon: drag it, or use the controls."""
+    return VertexExplorer(dx, dy)

@@ -1,7 +1,5 @@
 """Small matplotlib helpers shared by the chapters (they draw; the mathematics lives elsewhere)."""
 
-import re
-
 import numpy as np
 
 from ._extras import missing
@@ -35,16 +33,3 @@ def arrows(ax, points, vectors, **style):
     style.setdefault("scale", 1)
     style.setdefault("width", 0.004)
     return ax.quiver(points[:, 0], points[:, 1], vectors[:, 0], vectors[:, 1], **style)
-
-
-def animation_html(animation, **options):
-    """An animation as self-contained HTML that plays offline, in a notebook or a built book.
-
-    ``animation.to_jshtml`` embeds every frame; its player links Font Awesome from a CDN for the
-    button icons. That link is removed: the book's theme already ships Font Awesome, and a page
-    must not reach the network. Keyword options go to ``to_jshtml`` (``default_mode="once"``
-    unless given). Close the figure afterwards, or the notebook shows its last frame as well.
-    """
-    options.setdefault("default_mode", "once")
-    html = animation.to_jshtml(**options)
-    return re.sub(r'<link[^>]*font-awesome[^>]*>', "", html)

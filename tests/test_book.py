@@ -12,7 +12,6 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import yaml  # noqa: E402
-from matplotlib.animation import FuncAnimation  # noqa: E402
 
 import ddg  # noqa: E402
 
@@ -65,16 +64,6 @@ def test_jupyterlab_folds_what_the_book_folds():
     """Solutions folded, hidden cells collapsed: tools/notebooks.py --fix keeps this true."""
     result = subprocess.run([sys.executable, "tools/notebooks.py"], cwd=ROOT, capture_output=True, text=True)
     assert result.returncode == 0, result.stdout
-
-
-def test_animation_html_plays_offline():
-    fig, ax = plt.subplots()
-    (line,) = ax.plot([], [])
-    animation = FuncAnimation(fig, lambda i: line.set_data([0, i], [0, i]), frames=3)
-    html = ddg.plot.animation_html(animation)
-    plt.close(fig)
-    assert "play_animation" in html and html.count("data:image/png;base64") == 3
-    assert "font-awesome" not in html and "https://" not in html
 
 
 def test_plot_curve_closes_closed_curves():

@@ -1,72 +1,111 @@
-"""The explorers compute what they show, stay fast enough to drag, and survive bad positions."""
+"""The explorers compute what they show, pack every reachable state, and work live and static."""
+
+import base64
+import gzip
+import json
+import re
+import xml.etree.ElementTree as ET
 
 import numpy as np
 import pytest
 
 import ddg
-from ddg.explore import InflationExplorer, PolygonExplorer, VertexExplorer, inflation_explorer, polygon_explorer, vertex_explorer
+from ddg.explore import (SHAPES, Animation, InflationExplorer, PolygonExplorer, Scene, VertexExplorer,
+                         inflation_explorer, polygon_explorer, svg, vertex_explorer)
 
-PNG = b"\x89PNG"
+
+def packed(explorer):
+    """The data a page's player receives: the gzip-compressed JSON inside the explorer's HTML."""
+    blob = re.search(r'class="ddg-data">([^<]*)</script>', explorer.html()).group(1)
+    return json.loads(gzip.decompress(base64.b64decode(blob)))
 
 
-@pytest.mark.parametrize("shape", ["circle", "ellipse", "non-convex blob"])
+@pytest.mark.parametrize("shape", list(SHAPES))
 @pytest.mark.parametrize("kind", ddg.CURVATURES)
 def test_polygon_explorer_error_is_error_against_smooth_curvature(shape, kind):
-    e = PolygonExplorer(n=50, shape=shape, kind=kind)
-    assert e.refresh().startswith(PNG)
-    curve = ddg.explore.SHAPES[shape]
-    t = curve.sample_parameters(50)
-    expected = np.abs(curve.sample(50).curvature(kind) - curve.curvature(t)).max()
-    assert e.update(n=50, shape=shape, kind=kind) == pytest.approx(expected)
+    polygon, t, k, kappa, error = PolygonExplorer().compute(50, shape, kind)
+    curve = SHAPES[shape]
+    assert np.allclose(error, np.abs(curve.sample(50).curvature(kind) - curve.curvature(t)))
+    summary = PolygonExplorer().scene(50, shape, kind).summary
+    assert f"largest |kᵢ − κ(tᵢ)| = {error.max():.3e}" in summary
 
 
 def test_sine_formula_is_exact_on_the_circle_in_the_explorer():
-    e = PolygonExplorer()
-    e.refresh()
-    assert e.update(n=7, shape="circle", kind="sine") < 1e-13
-    assert e.update(n=7, shape="circle", kind="angle") > 1e-3
+    assert PolygonExplorer().compute(7, "circle", "sine")[-1].max() < 1e-13
+    assert PolygonExplorer().compute(7, "circle", "angle")[-1].max() > 1e-3
 
 
 @pytest.mark.parametrize("method", ddg.INFLATIONS)
 def test_inflation_explorer_formula_and_measurement(method):
-    e = InflationExplorer(shape="convex pentagon", method=method)
-    e.refresh()
-    formula, measured = e.update(eps=0.7, shape="convex pentagon", method=method)
-    assert measured == pytest.approx(formula, rel=1e-5)  # convex: the lecture's formulas hold
-    formula, measured = e.update(eps=0.3, shape="non-convex star", method=method)
+    e = InflationExplorer()
+    _, region, formula = e.compute(0.7, "convex pentagon", method)
+    assert region.area == pytest.approx(formula, rel=1e-5)  # convex: the lecture's formulas hold
+    _, region, formula = e.compute(0.3, "non-convex star", method)
     if method == "minkowski":
-        assert measured < formula - 1e-3  # reflex corners: the angle formula overestimates
+        assert region.area < formula - 1e-3  # reflex corners: the angle formula overestimates
     else:
-        assert measured == pytest.approx(formula, rel=1e-9)  # the tangent formula stays exact
-    assert "difference" in e.summary
+        assert region.area == pytest.approx(formula, rel=1e-9)  # the tangent formula stays exact
+    assert "difference" in e.scene(0.3, "non-convex star", method).summary
 
 
 def test_vertex_explorer_curvatures_and_gradient():
     e = VertexExplorer()
-    e.refresh()
-    ks = e.update(dx=0.0, dy=0.0)
+    _, ks, grad = e.compute(0.0, 0.0)
     np.testing.assert_allclose(ks["sine"], 1.0)
-    ks = e.update(dx=0.4, dy=0.5)  # pushed inward: a reflex vertex
+    _, ks, grad = e.compute(0.45, 0.45)  # pushed inward: a reflex vertex
     assert ks["angle"][2] < 0 and ks["sine"][2] < 0
-    assert "k<sub>sine</sub>" in e.summary
+    assert np.allclose(np.linalg.norm(grad, axis=1), np.abs(ks["sine"]))  # |grad L| = |k sine|
 
 
 def test_vertex_explorer_reports_an_impossible_position():
     e = VertexExplorer()
-    e.refresh()
-    neighbour = e.base[3] - e.base[2]
-    e.base[3] = e.base[2] + np.round(neighbour, 2)  # make the neighbour reachable on the slider grid
-    assert e.update(dx=float(np.round(neighbour[0], 2)), dy=float(np.round(neighbour[1], 2))) is None
-    assert "not a discrete curve" in e.summary and "vertices 2 and 3 are equal" in e.summary
+    e.base[3] = e.base[2] + (0.5, -0.5)  # a neighbour the dragged vertex can reach exactly
+    scene = e.scene(0.5, -0.5)
+    assert "not a discrete curve" in scene.summary and "vertices 2 and 3 are equal" in scene.summary
 
 
-def test_widgets_are_built_with_controls_and_an_image():
-    for make, n_controls in ((polygon_explorer, 3), (inflation_explorer, 3), (vertex_explorer, 2)):
-        box = make()
-        controls, summary, image = box.children
-        assert len(controls.children) == n_controls
-        assert bytes(image.value).startswith(PNG) and summary.value
-        before = bytes(image.value)
-        first = controls.children[0]
-        first.value = first.max  # a slider move recomputes and redraws
-        assert bytes(image.value) != before
+@pytest.mark.parametrize("explorer", [PolygonExplorer(24, "non-convex blob"), InflationExplorer(), VertexExplorer(0.3, -0.15)],
+                         ids=lambda e: type(e).__name__)
+def test_every_reachable_state_is_packed_and_drawn(explorer):
+    data = packed(explorer)
+    count = np.prod([len(c["options"]) for c in data["controls"]])
+    assert len(data["states"]) == count and data["value"] in data["states"]
+    for state in data["states"].values():
+        assert all(0 <= i < len(data["items"]) for i in state["i"]) and state["t"] and state["a"]
+        assert 0 <= state["p"] < len(data["panels"])
+    first = explorer.scene(**explorer.values())
+    for i in range(len(first.panels)):
+        ET.fromstring(svg(first, i))  # well-formed SVG, for pages without JavaScript
+    assert len(explorer.html()) < 200_000
+
+
+def test_the_static_page_offers_the_nearest_value_of_a_live_one():
+    assert packed(VertexExplorer(0.3, -0.2))["value"] == "0.3|-0.15"
+
+
+def test_live_widgets_recompute_on_every_change():
+    for explorer in (polygon_explorer(), inflation_explorer(), vertex_explorer()):
+        box = explorer.widget()
+        controls, summary, picture = box.children
+        assert len(controls.children) == len(explorer.controls) and "<svg" in picture.value
+        before, first = (picture.value, summary.value), controls.children[0]
+        first.value = next(o for o in first.options if o != first.value) if hasattr(first, "options") else first.max
+        assert (picture.value, summary.value) != before
+    live = polygon_explorer().widget().children[0].children[1]
+    assert live.max == 1000  # a kernel computes any n, not only the static page's
+
+
+def test_output_is_live_in_a_kernel_and_static_in_the_book():
+    bundle = polygon_explorer()._repr_mimebundle_()
+    assert "application/vnd.jupyter.widget-view+json" in bundle and "ddg-explorer" in bundle["text/html"]
+
+
+def test_animation_plays_its_scenes_in_order():
+    frames = []
+    for t in (0.0, 0.1, 0.2):
+        scene = Scene([{"box": (-1, -1, 1, 1), "px": (100, 100), "title": f"t = {t}"}], f"t = {t}", f"a circle, t = {t}")
+        scene.line(0, ddg.regular_polygon(12, 1 - t).vertices, closed=True)
+        frames.append(scene)
+    data = packed(Animation(frames, "t", [0.0, 0.1, 0.2]))
+    assert list(data["states"]) == ["0", "1", "2"] and data["controls"][0]["type"] == "frames"
+    assert [s["t"] for s in data["states"].values()] == ["t = 0.0", "t = 0.1", "t = 0.2"]

@@ -1,10 +1,9 @@
 """Fetch the front-end files the offline book serves itself: `python tools/vendor.py DEST`.
 
-Two pinned npm packages, downloaded from the npm registry (or $NPM_REGISTRY), checked by
-SHA-256, and unpacked with the standard library only, so the set-up works on Linux and macOS:
-
-* MathJax 3: one component (tex-mml-chtml.js) and its woff-v2 fonts;
-* the ipywidgets embedder (@jupyter-widgets/html-manager 1.x): its embed scripts and fonts.
+A pinned npm package, downloaded from the npm registry (or $NPM_REGISTRY), checked by SHA-256,
+and unpacked with the standard library only, so the set-up works on Linux and macOS: MathJax 3,
+one component (tex-mml-chtml.js) and its woff-v2 fonts. (The explorers need no widget embedder:
+the book's own player draws them, book/_assets/ddg-player.js.)
 
 DEST (the Makefile uses .venv/vendor) is listed in `html_static_path` in _config.yml, so the
 book build copies it into _build/html/_static.
@@ -27,9 +26,6 @@ PACKAGES = [
     ("mathjax", "mathjax/-/mathjax-3.2.2.tgz",
      "1b9c0a1c44df864e915690558e72adb9cc5203360daefd385084ced3b6c64c09",
      ["package/es5/tex-mml-chtml.js", "package/es5/output/chtml/fonts/woff-v2/*"], "package/es5/"),
-    ("widgets", "@jupyter-widgets/html-manager/-/html-manager-1.0.7.tgz",
-     "b21e796f39be9e9a4c2f9843d362bba0b905bcaa62d4a1c12c52de0f67c244bf",
-     ["package/dist/*embed.js", "package/dist/*.woff2", "package/dist/*.woff"], "package/dist/"),
 ]
 
 
@@ -44,7 +40,7 @@ def unpack(data, folder, keep, prefix):
     with tarfile.open(fileobj=io.BytesIO(data), mode="r:gz") as tar:
         for member in tar.getmembers():
             wanted = any(fnmatch.fnmatch(member.name, pattern) for pattern in keep)
-            if not member.isfile() or not wanted or "amd" in member.name:  # the AMD build is not used
+            if not member.isfile() or not wanted:
                 continue
             target = folder / member.name.removeprefix(prefix)
             if ".." in pathlib.PurePosixPath(member.name).parts:
