@@ -60,8 +60,8 @@ def test_make_repo_points_config_and_every_notebook_at_a_new_repository(tmp_path
     assert run("not a url").returncode != 0
 
 
-def test_jupyterlab_folds_what_the_book_folds():
-    """Solutions folded, hidden cells collapsed: tools/notebooks.py --fix keeps this true."""
+def test_prose_cannot_break_and_jupyterlab_folds_what_the_book_folds():
+    """No wrapped line turns into markup; solutions folded, hidden cells collapsed (tools/notebooks.py)."""
     result = subprocess.run([sys.executable, "tools/notebooks.py"], cwd=ROOT, capture_output=True, text=True)
     assert result.returncode == 0, result.stdout
 
@@ -83,3 +83,15 @@ def test_notebook_code_is_formatted_to_fit_the_page_column():
     assert formatted.returncode == 0, formatted.stdout + formatted.stderr
     linted = subprocess.run([*ruff, "check", "--output-format", "concise", *paths], cwd=ROOT, capture_output=True, text=True)
     assert linted.returncode == 0, linted.stdout
+
+
+def test_the_prose_check_finds_wrapped_lines_that_become_markup():
+    from tools.notebooks import prose_problems
+
+    assert prose_problems("since the sine\n# formula *is* the gradient") != []
+    assert prose_problems("with $a = b\n+ c$ and more") != []
+    assert prose_problems("a line\n> quoted by accident") != []
+    assert prose_problems("a line\n---") != []  # a setext heading
+    assert prose_problems("```{note}\nwhere\n- a list starts in a directive\n```") != []
+    assert prose_problems("Text.\n\n- a list\n- of two\n\n# A heading\n\n$$x\n- y$$") == []
+    assert prose_problems("```{solution-start} ex\n:class: dropdown\n```\n1. first\n2. second") == []
