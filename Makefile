@@ -68,6 +68,7 @@ test: $(ENV) $(VENDOR)
 		--ignore=tests/browser --ignore=tests/journeys
 	$(MAKE) book-strict
 	$(MAKE) student
+	rm -rf _build/screenshots
 	$(PY) -m pytest -n 2 --dist loadfile tests/browser tests/journeys
 
 # JupyterLab on the chapter notebooks; it prints the URL to open (with its token).

@@ -145,7 +145,7 @@ def _configure(config, student_repo):
     """The course's ``_config.yml``, made into the student edition's."""
     config = config.replace('title: "', 'title: "Student edition: ', 1)
     config = re.sub(r"execute_notebooks: \w+", "execute_notebooks: force", config)  # every page executed
-    config = config.replace("html_static_path: [.venv/vendor]", "html_static_path: [_vendor]")  # portable
+    config = config.replace("html_static_path: [.venv/vendor", "html_static_path: [_vendor")  # portable
     config = re.sub(r"(exclude_patterns: \[)", r"\1html, _vendor, ", config)
     if student_repo:
         config = re.sub(r"^(repository:\s*\n\s+url:\s*)\S+", lambda m: m.group(1) + student_repo, config,
@@ -184,6 +184,8 @@ def write_edition(root, out, force=False, vendor=None, student_repo=None):
             written[path.name] = _sha256(target)
         elif path.is_file():
             shutil.copy(path, out / "book" / path.name)
+        elif path.name == "_assets":  # the book's own styles and scripts
+            shutil.copytree(path, out / "book" / path.name)
     (out / "book" / MANIFEST).write_text(json.dumps(written, indent=1) + "\n")
     shutil.copy(root / "_toc.yml", out / "_toc.yml")
     config = _configure((root / "_config.yml").read_text(), student_repo)

@@ -93,7 +93,7 @@ def test_the_student_site_has_every_page_figure_and_exercise_of_the_book():
 
 def test_the_student_edition_is_portable_and_has_no_wrong_launch_button():
     config = (STUDENT / "_config.yml").read_text()
-    assert str(ROOT) not in config and "/root" not in config and "html_static_path: [_vendor]" in config
+    assert str(ROOT) not in config and "/root" not in config and "html_static_path: [_vendor, book/_assets]" in config
     pages = "".join(p.read_text() for p in (SITES["student"] / "book").glob("*.html"))
     assert "mybinder.org" not in pages and "colab.research" not in pages
     assert "_sources/book/03_winding_number.ipynb" in pages  # the download leads to the student notebook
