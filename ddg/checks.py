@@ -65,7 +65,7 @@ class Feedback:
         return f"✗ {self.name}: {self.problem}"
 
     def _repr_html_(self):
-        color = "#1a7f37" if self.passed else "#b3261e"
+        color = "#116329" if self.passed else "#a40e26"  # dark enough for the light and the dark theme
         text = repr(self).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
         return f'<pre style="color: {color}; white-space: pre-wrap">{text}</pre>'
 

@@ -2,6 +2,33 @@
 document.addEventListener("DOMContentLoaded", function () {
   // A solution's title opens the solution: its link to the exercise would jump away instead.
   document.querySelectorAll(".solution > .admonition-title a").forEach(function (link) {
-    link.addEventListener("click", function (event) { event.preventDefault(); });
+    link.addEventListener("click", function (event) {
+      event.preventDefault();
+      event.stopPropagation();
+      var button = link.closest(".admonition-title").querySelector(".toggle-button");
+      if (button) { button.click(); }
+    });
   });
+  // The bibliography's entries are the items of its list (ARIA has no "doc-biblioentry" in a list).
+  document.querySelectorAll(".citation-list > [role='doc-biblioentry']").forEach(function (entry) {
+    entry.setAttribute("role", "listitem");
+  });
+  // Wide equations and tables scroll inside their own box; a shadow at the edge says so.
+  document.querySelectorAll("main div.math, main table").forEach(function (element) {
+    var box = element.closest(".ddg-scroll");
+    if (!box) {
+      box = document.createElement("div");
+      box.className = "ddg-scroll";
+      element.parentNode.insertBefore(box, element);
+      box.appendChild(element);
+    }
+  });
+  function cue() {
+    document.querySelectorAll(".ddg-scroll").forEach(function (box) {
+      box.classList.toggle("ddg-overflows", box.scrollWidth > box.clientWidth + 1);
+    });
+  }
+  cue();
+  window.addEventListener("resize", cue);
+  if (window.MathJax && MathJax.startup && MathJax.startup.promise) { MathJax.startup.promise.then(cue); }
 });

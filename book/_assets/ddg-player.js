@@ -203,8 +203,10 @@
     this.detail.textContent = "";
     data.controls.forEach(function (c) {
       var input = self.inputs[c.name], shown = (c.shown || c.options)[self.values[c.name]];
-      input.setAttribute("aria-valuetext", String(shown));
-      if (input.output) { input.output.textContent = " " + shown; }
+      if (input.output) {  // a slider: says its value, to the eye and to a screen reader
+        input.output.textContent = " " + shown;
+        input.setAttribute("aria-valuetext", String(shown));
+      }
     });
     this.root.querySelectorAll("circle[data-label]").forEach(function (dot) {
       var show = function () { self.detail.textContent = dot.getAttribute("data-label"); };

@@ -83,7 +83,7 @@ class Visit:
                                            color_scheme="dark" if dark else "light")
         self.context.route("**/*", self._route)
         self.page = self.context.new_page()
-        self.page.on("console", lambda m: m.type == "error" and self.console.append(m.text))
+        self.page.on("console", lambda m: m.type == "error" and not self.ignoring and self.console.append(m.text))
         self.page.on("pageerror", lambda e: self.console.append(str(e)))
         self.page.on("response", lambda r: r.status >= 400 and not self.ignoring and self.failed.append(f"{r.status} {r.url}"))
         self.page.on("requestfailed", lambda r: not self.ignoring and self.failed.append(f"failed {r.url}: {r.failure}"))

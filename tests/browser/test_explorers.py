@@ -1,0 +1,164 @@
+"""Explorers and animations in the page, with no kernel and no network.
+
+For every explorer and animation of every page: each control (list, slider, play button, the
+dragged vertex) changes what is drawn, operated by keyboard where a reader would; the numbers and
+the text alternative shown agree with ddg computing the same state in Python. The time a control
+step takes in the page is written to _build/explorer-timings.json (a measurement, not a test).
+"""
+
+import json
+import re
+
+import numpy as np
+import pytest
+from conftest import ROOT, SITES, Visit, pages
+
+from ddg.explore import POLYGONS, InflationExplorer, PolygonExplorer, VertexExplorer, measured_region
+
+EXPLORERS = {"Polygons on a smooth curve": PolygonExplorer(), "Inflation": InflationExplorer(),
+             "One vertex": VertexExplorer()}
+STEP = """([index, name, delta]) => {  // one control step, timed: the page draws synchronously
+    const root = document.querySelectorAll(".ddg-explorer")[index];
+    const input = [...root.querySelectorAll(".ddg-controls select, .ddg-controls input")][name];
+    const start = performance.now();
+    input.value = Number(input.value) + delta;
+    input.dispatchEvent(new Event("input"));
+    return performance.now() - start;
+}"""
+
+
+def explorer_pages():
+    return [(site, p) for site in SITES for p in pages(site) if "ddg-explorer" in (SITES[site] / p).read_text()]
+
+
+def plain(html):
+    return re.sub(r"<[^>]+>", "", html).replace("&lt;", "<").replace("&gt;", ">").strip()
+
+
+def state_of(root):
+    """The values the controls show: {name: value}."""
+    values = {}
+    for label in root.locator(".ddg-controls label").all():
+        select, output = label.locator("select"), label.locator("output")
+        name = label.locator("span").inner_text().strip()
+        values[name] = select.evaluate("s => s.selectedOptions[0].textContent") if select.count() else output.inner_text().strip()
+    return values
+
+
+def expected(title, values):
+    """The scene ddg computes for the state the page shows."""
+    if title == "Polygons on a smooth curve":
+        return EXPLORERS[title].scene(int(values["vertices n"]), values["curve"], values["formula"])
+    if title == "Inflation":
+        return EXPLORERS[title].scene(float(values["ε"]), values["shape"], values["inflation"])
+    if title == "One vertex":
+        return EXPLORERS[title].scene(float(values["move v2: x"]), float(values["y"]))
+    return None
+
+
+def check_numbers(root, title, where):
+    scene = expected(title, state_of(root))
+    if scene is not None:
+        assert root.locator(".ddg-summary").last.inner_text().strip() == plain(scene.summary), where
+        assert root.locator(".ddg-alt").inner_text().strip() == scene.alt, where
+    elif "ε = " in (summary := root.locator(".ddg-summary").last.inner_text()):  # the inflation animation
+        eps = float(re.search(r"ε = (\d+\.\d+)", summary).group(1))
+        for method, name in (("minkowski", "Minkowski sum"), ("offset", "offset with kites")):
+            polygon = POLYGONS["convex pentagon"]
+            formula = float(re.search(rf"{name}: formula ([\d.]+)", summary).group(1))
+            assert abs(formula - polygon.inflated_area(eps, method)) < 1e-4, where
+            measured = float(re.search(rf"{name}: formula [\d.]+, measured ([\d.]+)", summary).group(1))
+            assert abs(measured - measured_region(polygon, eps, method).area) < 1e-3, where
+
+
+def drawing(root):
+    return root.locator(".ddg-figure").inner_html()
+
+
+@pytest.mark.parametrize("site, path", explorer_pages(), ids=lambda x: str(x))
+def test_every_control_redraws_and_the_numbers_agree_with_ddg(servers, browser, site, path):
+    visit = Visit(browser, servers[site], path)
+    page, timings = visit.page, []
+    try:
+        roots = page.locator(".ddg-explorer")
+        assert roots.count() >= 1
+        page.wait_for_function("n => document.querySelectorAll('.ddg-figure').length === n", arg=roots.count())
+        for index in range(roots.count()):
+            root = roots.nth(index)
+            title = root.get_attribute("data-title")
+            assert root.locator(".ddg-static").is_hidden(), "the player did not take over"
+            check_numbers(root, title, f"{path} #{index}: first state")
+            inputs = root.locator(".ddg-controls select, .ddg-controls input")
+            for k in range(inputs.count()):
+                before, control = drawing(root), inputs.nth(k)
+                if control.evaluate("e => e.tagName") == "SELECT":
+                    options = control.locator("option").all_inner_texts()
+                    other = next(o for o in options if o != control.evaluate("s => s.selectedOptions[0].textContent"))
+                    control.select_option(label=other)
+                else:
+                    at_end = control.evaluate("e => Number(e.value) >= Number(e.max)")
+                    control.focus()
+                    page.keyboard.press("ArrowLeft" if at_end else "ArrowRight")  # the keyboard moves a slider
+                    timings.append(page.evaluate(STEP, [index, k, -1 if at_end else 1]))
+                assert drawing(root) != before, f"{path} #{index}: control {k} changed nothing drawn"
+                check_numbers(root, title, f"{path} #{index}: after control {k}")
+            play = root.locator(".ddg-play")
+            if play.count():
+                control = root.locator("input[type=range]").first
+                control.evaluate("e => { e.value = 0; e.dispatchEvent(new Event('input')); }")
+                before = drawing(root)
+                play.click()
+                page.wait_for_timeout(900)
+                assert drawing(root) != before, f"{path} #{index}: Play did not animate"
+                play.click()  # pause
+                paused = drawing(root)
+                page.wait_for_timeout(700)
+                assert drawing(root) == paused, f"{path} #{index}: Pause did not stop it"
+                check_numbers(root, title, f"{path} #{index}: paused")
+            handle = root.locator(".ddg-handle")
+            if handle.count():  # the dragged vertex: arrow keys, then the pointer
+                values = state_of(root)
+                handle.focus()
+                page.keyboard.press("ArrowRight")
+                moved = state_of(root)
+                assert float(moved["move v2: x"]) > float(values["move v2: x"]), "the arrow key did not move v2"
+                check_numbers(root, title, f"{path} #{index}: after an arrow key")
+                box = root.locator(".ddg-handle").bounding_box()
+                page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+                page.mouse.down()
+                page.mouse.move(box["x"] - 30, box["y"] + 40, steps=4)
+                page.mouse.up()
+                dragged = state_of(root)
+                assert dragged != moved, "dragging v2 changed nothing"
+                check_numbers(root, title, f"{path} #{index}: after a drag")
+                assert root.locator("circle[data-label]").count() >= 6  # each vertex says its psi and k
+                root.locator("circle[data-label]").first.hover()
+                assert "ψ =" in root.locator(".ddg-detail").inner_text()
+        assert not visit.unexpected_console() and not visit.outside and not visit.failed
+    finally:
+        visit.close()
+    out = ROOT / "_build" / "explorer-timings.json"
+    previous = json.loads(out.read_text()) if out.exists() else {}
+    if timings:
+        previous[f"{site}:{path}"] = {"steps": len(timings), "median_ms": float(np.median(timings)),
+                                      "max_ms": float(np.max(timings))}
+        out.write_text(json.dumps(previous, indent=1))
+
+
+def test_explorers_and_animations_are_on_their_pages():
+    found = {p: (SITES["book"] / p).read_text().count('class="ddg-explorer"') for p in pages("book")}
+    assert found["book/09_explorers.html"] == 3
+    assert found["book/05_inflation.html"] == 1 and found["book/08_curve_shortening.html"] == 1
+
+
+def test_without_javascript_the_first_state_is_drawn(servers, browser):
+    context = browser.new_context(java_script_enabled=False)
+    try:
+        page = context.new_page()
+        page.goto(servers["book"] + "book/09_explorers.html")
+        statics = page.locator(".ddg-static")
+        assert statics.count() == 3 and all(statics.nth(i).is_visible() for i in range(3))
+        assert page.locator(".ddg-static svg path").count() > 10
+        assert all(statics.nth(i).get_attribute("aria-label") for i in range(3))
+    finally:
+        context.close()

@@ -1,0 +1,138 @@
+"""Every page of both sites, as a reader sees it: desktop, phone and dark theme, network cut off.
+
+On each page: nothing requested outside loopback and nothing failing, no unexpected console
+error, every local link resolving, math typeset with no TeX left in the visible text, exactly one
+visible h1, no code or output box scrolling sideways at 1280 px, no page scrolling sideways at
+390 px (wide tables and equations scroll inside their own box, with a visible cue), figures not
+shrunk on a phone and not dimmed on the dark theme, and no serious or critical violation of
+axe-core's WCAG 2 A/AA rules. A screenshot of each page in each view is saved.
+"""
+
+import pathlib
+from urllib.parse import unquote, urljoin, urlparse
+
+import pytest
+from conftest import SITES, Visit, pages
+
+axe_module = pytest.importorskip("axe_playwright_python.sync_playwright")
+
+AXE_OPTIONS = {"runOnly": {"type": "tag", "values": ["wcag2a", "wcag2aa"]}, "resultTypes": ["violations"]}
+
+TEX_LEFT = r"""() => {
+    const found = [];
+    const walker = document.createTreeWalker(document.querySelector("main") || document.body, NodeFilter.SHOW_TEXT);
+    while (walker.nextNode()) {
+        const node = walker.currentNode, element = node.parentElement;
+        if (!element || element.closest("mjx-container, code, pre, script, style, svg, .ddg-explorer, .ddg-alt")) continue;
+        if (!element.getClientRects().length) continue;  // not shown (a folded solution)
+        if (/\\[a-zA-Z]{2,}|\$[^$\s][^$]*\$|\\\(|\\\[/.test(node.textContent)) found.push(node.textContent.trim().slice(0, 80));
+    }
+    return found;
+}"""
+
+SIDEWAYS = r"""(selector) => [...document.querySelectorAll(selector)]
+    .filter(e => e.getClientRects().length && e.scrollWidth > e.clientWidth + 1)
+    .map(e => (e.className || e.tagName) + ": " + e.textContent.trim().slice(0, 60))"""
+
+PAGE_IS_WIDER = "() => document.documentElement.scrollWidth - window.innerWidth"
+
+UNCUED = r"""() => [...document.querySelectorAll("main table, main div.math, main mjx-container[display=true]")]
+    .filter(e => e.getClientRects().length)
+    .map(e => e.closest(".ddg-scroll") || e)
+    .filter(e => e.scrollWidth > e.clientWidth + 1 && !(e.classList.contains("ddg-scroll") && e.classList.contains("ddg-overflows")))
+    .map(e => e.tagName + ": " + e.textContent.trim().slice(0, 60))"""
+
+SHRUNK = r"""() => [...document.querySelectorAll("main .cell_output img")]
+    .filter(img => img.naturalWidth > 0 && img.getBoundingClientRect().width < 0.9 * img.naturalWidth)
+    .map(img => img.alt.slice(0, 50) + " at " + Math.round(100 * img.getBoundingClientRect().width / img.naturalWidth) + "%")"""
+
+DIMMED = r"""() => [...document.querySelectorAll("main .cell_output img, main figure img")]
+    .filter(img => getComputedStyle(img).filter !== "none").map(img => img.alt.slice(0, 50))"""
+
+VISIBLE_H1 = "() => [...document.querySelectorAll('h1')].filter(h => h.getClientRects().length).map(h => h.textContent.trim())"
+
+
+def local_targets_missing(page, site, server):
+    """Local links, images, scripts and styles of the page that name no file of the site."""
+    targets = page.eval_on_selector_all("a[href], img[src], script[src], link[href]",
+                                        "els => els.map(e => e.getAttribute('href') || e.getAttribute('src'))")
+    missing = []
+    for target in targets:
+        url = urlparse(urljoin(page.url, target))
+        if url.scheme in ("http", "https") and url.netloc == urlparse(server).netloc:
+            local = SITES[site] / unquote(url.path).lstrip("/")
+            if local.is_dir():
+                local = local / "index.html"
+            if not local.exists():
+                missing.append(target)
+    return missing
+
+
+def axe_violations(visit):
+    visit.ignoring = True
+    try:
+        result = axe_module.Axe().run(visit.page, options=AXE_OPTIONS)
+    finally:
+        visit.ignoring = False
+    return [f"{v['id']} ({v['impact']}): {v['help']} — {v['nodes'][0]['target']}"
+            for v in result.response["violations"] if v["impact"] in ("serious", "critical")]
+
+
+CASES = [(site, path) for site in SITES for path in pages(site)]
+
+
+@pytest.mark.parametrize("site, path", CASES, ids=[f"{s}:{p}" for s, p in CASES])
+def test_page_reads_right_in_every_view(servers, browser, site, path):
+    problems = []
+    for view in ("desktop", "phone", "dark"):
+        visit = Visit(browser, servers[site], path, view)
+        page = visit.page
+        try:
+            if view == "desktop":
+                problems += [f"requests outside loopback: {visit.outside}"] if visit.outside else []
+                problems += [f"local targets that do not resolve: {m}"] if (m := local_targets_missing(page, site, servers[site])) else []
+                problems += [f"MathJax errors: {n}"] if (n := page.locator("mjx-merror").count()) else []
+                problems += [f"TeX left in the text: {t[:3]}"] if (t := page.evaluate(TEX_LEFT)) else []
+                problems += [f"visible h1: {h}"] if len(h := page.evaluate(VISIBLE_H1)) != 1 else []
+                boxes = page.evaluate(SIDEWAYS, "main div.highlight pre, main .cell_output .output")
+                problems += [f"boxes that scroll sideways at 1280 px: {boxes[:3]}"] if boxes else []
+            if view == "phone":
+                wider = page.evaluate(PAGE_IS_WIDER)
+                problems += [f"the page scrolls sideways by {wider} px at 390 px"] if wider > 1 else []
+                problems += [f"wide content without a scroll box and cue: {u[:3]}"] if (u := page.evaluate(UNCUED)) else []
+                problems += [f"figures shrunk on a phone: {s[:3]}"] if (s := page.evaluate(SHRUNK)) else []
+            if view == "dark":
+                theme = page.evaluate("document.documentElement.dataset.theme")
+                problems += [f"the page is not in dark mode ({theme})"] if theme != "dark" else []
+                problems += [f"figures dimmed on the dark theme: {d[:3]}"] if (d := page.evaluate(DIMMED)) else []
+            if view in ("desktop", "dark"):
+                problems += [f"{view}: axe: {v}" for v in axe_violations(visit)]
+            visit.screenshot(site, view, path)
+            problems += [f"{view}: failed requests: {visit.failed}"] if visit.failed else []
+            problems += [f"{view}: console errors: {c}"] if (c := visit.unexpected_console()) else []
+        finally:
+            visit.close()
+    assert not problems, "\n".join(problems)
+
+
+def test_both_sites_were_found():
+    for site in SITES:
+        found = pages(site)
+        assert "book/05_inflation.html" in found and len(found) >= 12, (site, found)
+
+
+@pytest.mark.parametrize("site", list(SITES))
+def test_every_page_and_the_site_fit_their_budgets(site):
+    """Each page (its HTML and the images it shows) at most 1 MB; the whole site at most 25 MB."""
+    import re
+
+    folder, heavy = SITES[site], {}
+    for path in pages(site):
+        html = (folder / path).read_text(encoding="utf-8")
+        images = {m for m in re.findall(r'<img[^>]+src="([^"]+)"', html) if not m.startswith(("data:", "http"))}
+        size = (folder / path).stat().st_size + sum((folder / path).parent.joinpath(s).stat().st_size for s in images)
+        if size > 2**20:
+            heavy[path] = size
+    assert not heavy, f"pages over 1 MB: {heavy}"
+    total = sum(p.stat().st_size for p in pathlib.Path(folder).rglob("*") if p.is_file())
+    assert total < 25 * 2**20, f"the {site} site is {total / 2**20:.1f} MB"
