@@ -17,7 +17,7 @@ export PYTHONPATH := $(CURDIR)
 # What the pages are computed from: a change here means every notebook must run again.
 INPUTS = $$(find ddg -name '*.py' | sort | xargs cat requirements.txt _config.yml | cksum)
 
-.PHONY: book book-strict test lab bench student dist repo clean
+.PHONY: book book-strict test lab bench student pdf dist repo clean
 
 # The environment, rebuilt when requirements.txt or pyproject.toml change (by content, so a fresh
 # clone or a copy with the same pins keeps it). Also a wheelhouse: the pinned wheels a notebook
@@ -68,6 +68,7 @@ test: $(ENV) $(VENDOR)
 		--ignore=tests/browser --ignore=tests/journeys
 	$(MAKE) book-strict
 	$(MAKE) student
+	$(MAKE) pdf
 	rm -rf _build/screenshots
 	$(PY) -m pytest -n 2 --dist loadfile tests/browser tests/journeys
 
@@ -85,6 +86,14 @@ student: $(ENV) $(VENDOR)
 	$(JB) build _build/student -W -n --keep-going
 	rm -rf _build/student/html && mv _build/student/_build/html _build/student/html
 	@echo "The student site is at $(CURDIR)/_build/student/html/index.html"
+
+# The book (and the student edition, when it is built) as PDF: _build/pdf/book.pdf, one PDF per
+# chapter, and the same for students in _build/pdf/student/. Printed by Chromium (tools/pdf.py).
+pdf: $(ENV)
+	@[ -f _build/html/index.html ] || $(MAKE) book
+	@$(PY) tools/browser.py >/dev/null
+	$(PY) tools/pdf.py _build/html _build/pdf
+	@if [ -f _build/student/html/index.html ]; then $(PY) tools/pdf.py _build/student/html _build/pdf/student; fi
 
 bench: $(ENV)
 	$(PY) tests/benchmark.py

@@ -265,11 +265,26 @@ class Explorer:
         data["value"] = self.key(values)
         data["title"] = self.title
         figures = "".join(svg(first, i) for i in range(len(first.panels)))
+        strip = "".join(f'<div class="ddg-print-state" role="img" aria-label="{html.escape(scene.alt)}">'
+                        + "".join(svg(scene, i) for i in range(len(scene.panels)))
+                        + f'<p class="ddg-summary">{scene.summary}</p></div>' for scene in self.print_states())
         blob = base64.b64encode(gzip.compress(json.dumps(data, separators=(",", ":")).encode(), mtime=0)).decode()
         return (f'<div class="ddg-explorer" data-title="{html.escape(self.title)}">'
                 f'<div class="ddg-static" role="img" aria-label="{html.escape(first.alt)}">{figures}'
                 f'<p class="ddg-summary">{first.summary}</p></div>'
+                f'<div class="ddg-print"><p class="ddg-print-note">{html.escape(self.title or "An animation")}, '
+                f'in {len(self.print_states())} of its states. The live version is in the web edition of this '
+                f'page and in the chapter\'s notebook.</p>{strip}</div>'
                 f'<script type="application/gzip+base64" class="ddg-data">{blob}</script></div>')
+
+    def print_states(self, count=3):
+        """A few states for a printed page: the first slider (or frames) from start to end."""
+        values = self.values()
+        moving = next((c for c in self.controls if c["type"] in ("range", "frames")), None)
+        if moving is None:
+            return [self.scene(**values)]
+        picks = np.unique(np.linspace(0, len(moving["options"]) - 1, count).round().astype(int))
+        return [self.scene(**{**values, moving["name"]: moving["options"][i]}) for i in picks]
 
     def widget(self):
         """Live controls (ipywidgets) that recompute the scene with ``ddg`` on every change."""

@@ -1,0 +1,90 @@
+"""Journey: a student prints the notes, an instructor posts the PDF (`make pdf`, run by `make test`).
+
+For the book and the student edition: every chapter's PDF exists and has its headings, no TeX
+source, at least as many images as the page has figures, and code lines that are not cut; the
+book's PDF has every chapter in order with a linked table of contents; the student PDF has no
+solution. Each page offers its PDF.
+"""
+
+import re
+
+import pytest
+from bs4 import BeautifulSoup
+from conftest import ROOT
+from pypdf import PdfReader
+from test_student_site import normalize, probes
+
+SITES = {"book": (ROOT / "_build" / "html", ROOT / "_build" / "pdf"),
+         "student": (ROOT / "_build" / "student" / "html", ROOT / "_build" / "pdf" / "student")}
+
+
+def chapters():
+    import yaml
+
+    toc = yaml.safe_load((ROOT / "_toc.yml").read_text())
+    return [toc["root"]] + [c["file"] for part in toc["parts"] for c in part["chapters"]]
+
+
+def squeeze(text):
+    return re.sub(r"\s+", "", normalize(text)).replace("ﬁ", "fi").replace("ﬀ", "ff").replace("ﬂ", "fl")
+
+
+@pytest.mark.parametrize("site", list(SITES))
+def test_every_chapter_prints_with_its_headings_figures_and_whole_code_lines(site):
+    html_dir, pdf_dir = SITES[site]
+    if not (pdf_dir / "book.pdf").exists():
+        pytest.fail(f"no {pdf_dir / 'book.pdf'}: `make test` runs `make pdf`")
+    for name in chapters():
+        pdf = pdf_dir / f"{name.split('/')[-1]}.pdf"
+        assert pdf.exists(), pdf
+        reader = PdfReader(pdf)
+        text = "\n".join(page.extract_text() for page in reader.pages)
+        soup = BeautifulSoup((html_dir / f"{name}.html").read_text(), "html.parser")
+        main = soup.select_one("main") or soup
+        for heading in main.select("h1, h2"):
+            title = re.sub(r"^[\d.]+\s*", "", heading.get_text(" ", strip=True).rstrip("#").strip())
+            title = re.sub(r"\\\(.*?\\\)", "", title)  # math is typeset, and extracted apart
+            assert squeeze(title) in squeeze(text), f"{pdf.name}: heading {title!r} missing"
+        code_text = " ".join(pre.get_text() for pre in main.select("pre"))
+        tex = set(re.findall(r"\\[a-zA-Z]{2,}|\$[^$\s][^$]{0,40}\$", text)) - set(re.findall(r"\\[a-zA-Z]{2,}|\$[^$\s][^$]{0,40}\$", code_text))
+        assert not tex, f"{pdf.name}: TeX source outside the code: {sorted(tex)[:5]}"
+        figures = len(main.select("figure img, .cell_output img"))
+        images = sum(len(page.images) for page in reader.pages)
+        assert images >= figures, f"{pdf.name}: {images} images for {figures} figures"
+        code = [line for pre in main.select("div.cell_input pre") if not pre.find_parent("details")
+                for line in pre.get_text().splitlines()]  # the code a page shows (folded code prints folded)
+        longest = max(code, key=len, default="")
+        if len(longest) > 60:  # the longest code line is printed whole, wrapped or not
+            assert squeeze(longest) in squeeze(text), f"{pdf.name}: code line cut: {longest!r}"
+
+
+@pytest.mark.parametrize("site", list(SITES))
+def test_the_book_pdf_has_every_chapter_in_order_and_a_linked_contents_page(site):
+    _, pdf_dir = SITES[site]
+    book = PdfReader(pdf_dir / "book.pdf")
+    counts = [len(PdfReader(pdf_dir / f"{name.split('/')[-1]}.pdf").pages) for name in chapters()]
+    assert len(book.pages) == 1 + sum(counts)
+    outline = book.outline
+    assert len(outline) == len(chapters())
+    starts = [book.get_destination_page_number(item) for item in outline]
+    assert starts == [1 + sum(counts[:i]) for i in range(len(counts))]
+    links = [a.get_object() for a in book.pages[0].get("/Annots", [])]
+    targets = [book.get_page_number(a["/A"]["/D"][0]) if hasattr(book, "get_page_number") else None for a in links]
+    assert targets == starts, "the contents page does not link to each chapter's first page"
+    assert "page 1 of" in book.pages[1].extract_text()  # page numbers in the footer
+
+
+def test_the_student_pdf_has_no_solution():
+    text = normalize("\n".join(page.extract_text() for page in PdfReader(SITES["student"][1] / "book.pdf").pages))
+    book = normalize("\n".join(page.extract_text() for page in PdfReader(SITES["book"][1] / "book.pdf").pages))
+    flat = lambda t: re.sub(r"\s+", " ", t)  # noqa: E731
+    code = [p for _, p in probes() if "(" in p or "=" in p]  # code lines survive extraction best
+    assert not [p for p in code if flat(p) in flat(text)], "solution code in the student PDF"
+    assert sum(flat(p) in flat(book) for p in code) >= 0.5 * len(code), "the probes find nothing even in the book"
+
+
+def test_each_page_offers_its_pdf():
+    for site, (html_dir, _) in SITES.items():
+        page = (html_dir / "book" / "03_winding_number.html").read_text()
+        assert 'href="../pdf/03_winding_number.pdf"' in page and 'href="../pdf/book.pdf"' in page, site
+        assert (html_dir / "pdf" / "03_winding_number.pdf").exists()

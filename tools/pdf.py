@@ -1,0 +1,165 @@
+"""`make pdf`: the built book, and the student edition when it exists, as PDF.
+
+    python tools/pdf.py SITE OUT        e.g. _build/html _build/pdf
+
+Chromium prints each page of the table of contents, served on loopback, after MathJax has
+typeset it (Playwright's `page.pdf`, with the book's print stylesheet: no sidebars or buttons,
+code that wraps, every explorer and animation as a strip of its states). Solutions print open;
+code that the page folds (the code behind a figure) stays out.
+Each chapter becomes OUT/<chapter>.pdf, with its title and page numbers at the foot of every
+page; OUT/book.pdf is all of them in order, after a title page whose table of contents links to
+each chapter (and a PDF outline). The PDFs are also copied into SITE/pdf/, and each page of the
+site offers its chapter's PDF and the book's next to its .ipynb download.
+"""
+
+import functools
+import http.server
+import pathlib
+import re
+import sys
+import threading
+
+import yaml
+from pypdf import PdfReader, PdfWriter
+from pypdf.generic import ArrayObject, DictionaryObject, FloatObject, NameObject, NumberObject
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+from tools.browser import find as find_chromium  # noqa: E402
+
+FLAGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking",
+         "--disable-component-update", "--disable-sync"]
+FOOTER = ('<div style="font-size: 8px; width: 100%; text-align: center; color: #555;">{title} '
+          '&middot; page <span class="pageNumber"></span> of <span class="totalPages"></span></div>')
+
+
+def chapters(site):
+    """(page, title) of each page of the table of contents, in order (read from the site's _toc.yml)."""
+    toc = yaml.safe_load((ROOT / "_toc.yml").read_text())
+    files = [toc["root"]] + [c["file"] for part in toc.get("parts", []) for c in part["chapters"]]
+    found = []
+    for name in files:
+        page = site / f"{name}.html"
+        if page.exists():
+            title = re.search(r"<title>(.*?)(?: &#8212;| —|</title>)", page.read_text()).group(1)
+            found.append((f"{name}.html", re.sub(r"<[^>]+>", "", title).strip()))
+    return found
+
+
+def serve(site):
+    class Quiet(http.server.SimpleHTTPRequestHandler):
+        def log_message(self, *args):
+            pass
+
+    httpd = http.server.ThreadingHTTPServer(("127.0.0.1", 0), functools.partial(Quiet, directory=str(site)))
+    threading.Thread(target=httpd.serve_forever, daemon=True).start()
+    return httpd
+
+
+def print_page(browser, url, out, title):
+    """One page as PDF, after MathJax, with solutions open; returns its number of pages."""
+    context = browser.new_context()
+    context.route("**/*", lambda r: r.continue_() if r.request.url.startswith(url.split("/book/")[0])
+                  or r.request.url.startswith("data:") else r.abort())
+    page = context.new_page()
+    page.goto(url, wait_until="networkidle")
+    if page.locator(".math").count():
+        page.wait_for_selector("mjx-container", state="attached", timeout=20000)
+        page.evaluate("() => window.MathJax && MathJax.startup ? MathJax.startup.promise : null")
+    page.evaluate("""() => document.querySelectorAll('.toggle-hidden').forEach(e => e.classList.remove('toggle-hidden'))""")
+    page.emulate_media(media="print")
+    page.pdf(path=str(out), format="A4", print_background=True, display_header_footer=True,
+             header_template="<span></span>", footer_template=FOOTER.format(title=title),
+             margin={"top": "16mm", "bottom": "16mm", "left": "14mm", "right": "14mm"})
+    context.close()
+    return len(PdfReader(out).pages)
+
+
+def contents_page(browser, title, entries, out):
+    """The title page with a table of contents; each entry links to a placeholder URL, then fixed."""
+    rows = "".join(f'<li><a href="https://contents.invalid/{i}">{name}</a><span>{page}</span></li>'
+                   for i, (name, page) in enumerate(entries))
+    html = (f"<html><head><meta charset='utf-8'><style>body {{ font-family: sans-serif; margin: 3cm 2.5cm; }}"
+            "h1 { font-size: 26pt; } li { display: flex; justify-content: space-between; margin: 0.4em 0; }"
+            "a { color: #0a4f8a; text-decoration: none; } ol { padding: 0; list-style: none; }</style></head>"
+            f"<body><h1>{title}</h1><h2>Contents</h2><ol>{rows}</ol></body></html>")
+    context = browser.new_context()
+    page = context.new_page()
+    page.set_content(html)
+    page.pdf(path=str(out), format="A4", print_background=True)
+    context.close()
+
+
+def link_contents(writer, starts):
+    """Point the contents page's placeholder links at the chapters' first pages."""
+    page = writer.pages[0]
+    for annotation in page.get("/Annots", []):
+        annotation = annotation.get_object()
+        uri = annotation.get("/A", {}).get("/URI", "")
+        match = re.match(r"https://contents\.invalid/(\d+)", str(uri))
+        if match:
+            target = writer.pages[starts[int(match.group(1))]].indirect_reference
+            annotation[NameObject("/A")] = DictionaryObject({
+                NameObject("/S"): NameObject("/GoTo"),
+                NameObject("/D"): ArrayObject([target, NameObject("/XYZ"), NumberObject(0), FloatObject(842),
+                                               NumberObject(0)])})
+
+
+def offer_downloads(site, pages):
+    """Each page's download menu offers its chapter's PDF and the book's (idempotent)."""
+    for path, _ in pages:
+        page = site / path
+        html = page.read_text()
+        if "ddg-pdf-link" in html:
+            continue
+        up = "../" * path.count("/")
+        items = (f'<li><a href="{up}pdf/{pathlib.Path(path).stem}.pdf" class="btn btn-sm dropdown-item ddg-pdf-link">'
+                 f'<span class="btn__text-container">PDF of this chapter</span></a></li>'
+                 f'<li><a href="{up}pdf/book.pdf" class="btn btn-sm dropdown-item ddg-pdf-link">'
+                 f'<span class="btn__text-container">PDF of the book</span></a></li>')
+        html = html.replace('<ul class="dropdown-menu">', '<ul class="dropdown-menu">' + items, 1)
+        page.write_text(html)
+
+
+def main(site, out):
+    from playwright.sync_api import sync_playwright
+
+    site, out = pathlib.Path(site), pathlib.Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    pages = chapters(site)
+    config = site.parent / "_config.yml"  # the student edition's, next to its html/; else the book's
+    config = config if config.exists() else ROOT / "_config.yml"
+    title = re.search(r'^title:\s*"([^"]+)"', config.read_text(), re.MULTILINE).group(1)
+    httpd = serve(site)
+    base = f"http://127.0.0.1:{httpd.server_port}/"
+    counts = []
+    with sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=find_chromium(), args=FLAGS)
+        for path, name in pages:
+            counts.append(print_page(browser, base + path, out / f"{pathlib.Path(path).stem}.pdf", name))
+        starts = [1 + sum(counts[:i]) for i in range(len(counts))]  # after the contents page
+        contents_page(browser, title, [(name, start + 1) for (_, name), start in zip(pages, starts)],
+                      out / "contents.pdf")
+        browser.close()
+    httpd.shutdown()
+    writer = PdfWriter()
+    writer.append(out / "contents.pdf")
+    for (path, name), start in zip(pages, starts):
+        writer.append(out / f"{pathlib.Path(path).stem}.pdf")
+        writer.add_outline_item(title=name, page_number=start)
+    link_contents(writer, starts)
+    writer.add_metadata({"/Title": title})
+    with open(out / "book.pdf", "wb") as file:
+        writer.write(file)
+    (out / "contents.pdf").unlink()
+    copy = site / "pdf"
+    copy.mkdir(exist_ok=True)
+    for pdf in out.glob("*.pdf"):
+        (copy / pdf.name).write_bytes(pdf.read_bytes())
+    offer_downloads(site, pages)
+    print(f"{out / 'book.pdf'}: {1 + sum(counts)} pages, {(out / 'book.pdf').stat().st_size / 2**20:.1f} MB; "
+          f"{len(pages)} chapter PDFs in {out}")
+
+
+if __name__ == "__main__":
+    main(*sys.argv[1:3])
