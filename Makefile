@@ -97,6 +97,7 @@ pdf: $(ENV)
 
 bench: $(ENV)
 	$(PY) tests/benchmark.py
+	$(PY) tests/bench_grading.py
 
 # The wheel and the source distribution of ddg (the distribution ddg-plane-curves) in dist/.
 dist: $(ENV)

@@ -60,6 +60,23 @@ def test_make_repo_points_config_and_every_notebook_at_a_new_repository(tmp_path
     assert run("not a url").returncode != 0
 
 
+def test_make_book_takes_the_repository_from_a_github_origin(tmp_path):
+    for name in ("_config.yml", "tools/repo.py", *(f"book/{nb.name}" for nb in NOTEBOOKS)):
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy(ROOT / name, tmp_path / name)
+    git = lambda *args: subprocess.run(["git", *args], cwd=tmp_path, capture_output=True, check=True)  # noqa: E731
+    git("init", "-q")
+    repo = lambda: subprocess.run([sys.executable, "tools/repo.py", "--from-git"], cwd=tmp_path)  # noqa: E731
+    git("remote", "add", "origin", "/some/local/path")  # not GitHub: nothing changes
+    before = (tmp_path / "_config.yml").read_text()
+    repo()
+    assert (tmp_path / "_config.yml").read_text() == before
+    git("remote", "set-url", "origin", "git@github.com:someone/dg-course.git")
+    repo()
+    assert yaml.safe_load((tmp_path / "_config.yml").read_text())["repository"]["url"] == "https://github.com/someone/dg-course"
+    assert subprocess.run([sys.executable, "tools/repo.py", "--check"], cwd=tmp_path).returncode == 0
+
+
 def test_prose_cannot_break_and_jupyterlab_folds_what_the_book_folds():
     """No wrapped line turns into markup; solutions folded, hidden cells collapsed (tools/notebooks.py)."""
     result = subprocess.run([sys.executable, "tools/notebooks.py"], cwd=ROOT, capture_output=True, text=True)
