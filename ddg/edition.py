@@ -154,6 +154,8 @@ def _configure(config, student_repo):
         config = re.sub(r"^(\s+binderhub_url:).*$", r"\1 ''", config, flags=re.MULTILINE)
         config = re.sub(r"^(\s+colab_url:).*$", r"\1 ''", config, flags=re.MULTILINE)
         config = re.sub(r"^(\s+use_repository_button:).*$", r"\1 false", config, flags=re.MULTILINE)
+        config = re.sub(r'^(\s+launch: ).*$', r'\1"The {fa}`download` button at the top of a chapter downloads its `.ipynb`."',
+                        config, flags=re.MULTILINE)
     return config
 
 
