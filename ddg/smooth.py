@@ -12,11 +12,64 @@ from functools import cached_property
 
 import numpy as np
 
-from .curve import DiscreteCurve
+from .curve import DiscreteCurve, _real
 
 # Gauss-Legendre rule on [0, 1], 8 nodes: exact for polynomials of degree 15.
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(8)
 _GL_X, _GL_W = (_GL_X + 1) / 2, _GL_W / 2
+
+RTOL = 1e-13
+"""Relative accuracy of the adaptive quadrature behind arc length and total curvature."""
+
+_EPS = np.finfo(float).eps
+
+
+def _gauss(f, a, b):
+    """``int_a^b f`` and ``int_a^b |f|`` on each cell ``[a_j, b_j]`` by the 8-node Gauss rule."""
+    values = f(a[..., None] + (b - a)[..., None] * _GL_X)
+    return (b - a) * (values @ _GL_W), (b - a) * (np.abs(values) @ _GL_W)
+
+
+def _adaptive(f, t0, t1, cells=1024, max_levels=60, max_cells=10**5):
+    """Cells ``(a, b)``, sorted, and ``int f`` on each, to a relative accuracy :data:`RTOL`.
+
+    Adaptive Gauss quadrature, vectorized over cells. Every cell is integrated whole and as two
+    halves; their difference estimates the error of the whole. A cell is done when that error is
+    below its share (its width over ``t1 - t0``) of ``RTOL * int |f|``, or at the level of rounding
+    in its own ``int |f|``, and its halves' sum is kept;
+    all other cells are halved at once and examined again. Narrow features (a thin ellipse's tips)
+    get small cells, smooth stretches stay coarse. Once the errors left sum to less than
+    ``RTOL * int |f|`` (a kink or a jump in ``f``) every cell is done. If that takes more than
+    ``max_levels`` halvings or ``max_cells`` cells, or cells narrower than the rounding of ``t``
+    allows, or ``f`` is not finite, ``ValueError`` says where.
+    """
+    a = np.linspace(t0, t1, cells + 1)
+    a, b = a[:-1], a[1:]
+    whole, _ = _gauss(f, a, b)
+    done, done_abs = [], 0.0
+    for _ in range(max_levels):
+        m = (a + b) / 2
+        (left, left_abs), (right, right_abs) = _gauss(f, a, m), _gauss(f, m, b)
+        if not np.isfinite(left_abs + right_abs).all():
+            worst = a[~np.isfinite(left_abs + right_abs)][0]
+            break
+        error, tolerance = np.abs(whole - left - right), RTOL * (done_abs + np.sum(left_abs + right_abs))
+        ok = error <= np.maximum(tolerance * (b - a) / (t1 - t0), 64 * _EPS * (left_abs + right_abs))  # or rounding
+        if np.sum(error[~ok]) <= tolerance:
+            ok[:] = True
+        done.append((a[ok], b[ok], (left + right)[ok]))
+        done_abs += np.sum((left_abs + right_abs)[ok])
+        if ok.all():
+            a, b, I = (np.concatenate(parts) for parts in zip(*done))
+            order = np.argsort(a)
+            return a[order], b[order], I[order]
+        worst = a[~ok][np.argmax(error[~ok])]
+        a, m, b = a[~ok], m[~ok], b[~ok]
+        if len(a) > max_cells / 2 or np.any(b - a < 1024 * np.spacing(np.maximum(abs(a), abs(b)))):
+            break  # too many cells, or cells so narrow that the rounding of t spoils f
+        a, b, whole = np.concatenate([a, m]), np.concatenate([m, b]), np.concatenate([left[~ok], right[~ok]])
+    raise ValueError(f"the quadrature did not converge near t = {worst:.6g}: is the curve regular "
+                     "(|gamma'| > 0) with continuous derivatives there?")
 
 
 def _points(f, t):
@@ -46,8 +99,11 @@ class SmoothCurve:
     """
 
     def __init__(self, position, velocity, acceleration, t0=0.0, t1=2 * np.pi, closed=True, name="curve"):
+        t0, t1 = _real(t0, "t0"), _real(t1, "t1")
         if not t1 > t0:
             raise ValueError(f"need t1 > t0, got t0={t0!r}, t1={t1!r}")
+        if not isinstance(closed, (bool, np.bool_)):
+            raise ValueError(f"closed must be True or False, got {closed!r}")
         self.gamma, self.dgamma, self.ddgamma = position, velocity, acceleration  # the callables given
         self.t0, self.t1, self.closed, self.name = float(t0), float(t1), bool(closed), name
 
@@ -84,28 +140,25 @@ class SmoothCurve:
 
     # ---------------------------------------------------------------------- arc length
 
-    _GRID = 1024  # quadrature cells; 8 Gauss nodes each
-
     @cached_property
     def _grid(self):
-        """Cell boundaries in ``t`` and the arc length up to each of them."""
-        t = np.linspace(self.t0, self.t1, self._GRID + 1)
-        return t, np.concatenate([[0.0], np.cumsum(self._integrate_speed(t[:-1], t[1:]))])
+        """Cell boundaries in ``t`` (adaptive, see ``_adaptive``) and the arc length up to each."""
+        a, b, integrals = _adaptive(self.speed, self.t0, self.t1)
+        return np.append(a, b[-1]), np.concatenate([[0.0], np.cumsum(integrals)])
 
     def _integrate_speed(self, a, b):
-        nodes = a[..., None] + (b - a)[..., None] * _GL_X
-        return (b - a) * (self.speed(nodes) @ _GL_W)
+        return _gauss(self.speed, a, b)[0]
 
     def arc_length(self, t):
         """``s(t) = int_{t0}^{t} |gamma'|``: arc length from the start to parameter ``t``."""
         t = np.asarray(t, dtype=float)
         grid, s = self._grid
-        cell = np.clip(np.searchsorted(grid, t, side="right") - 1, 0, self._GRID - 1)
+        cell = np.clip(np.searchsorted(grid, t, side="right") - 1, 0, len(grid) - 2)
         return s[cell] + self._integrate_speed(grid[cell], t)
 
     @cached_property
     def length(self):
-        """Total arc length ``L``."""
+        """Total arc length ``L``, by adaptive Gauss quadrature to a relative accuracy of about ``RTOL``."""
         return float(self._grid[1][-1])
 
     def parameter_at(self, s):
@@ -118,11 +171,15 @@ class SmoothCurve:
         return t
 
     def total_curvature(self):
-        """``int kappa ds``: ``2 pi`` times the turning number for a closed curve (Theorem 2.1)."""
-        grid, _ = self._grid
-        nodes = grid[:-1, None] + np.diff(grid)[:, None] * _GL_X
-        integrand = self.curvature(nodes) * self.speed(nodes)
-        return float((np.diff(grid) * (integrand @ _GL_W)).sum())
+        """``int kappa ds``: ``2 pi`` times the turning number for a closed curve (Theorem 2.1).
+
+        By adaptive Gauss quadrature of ``kappa |gamma'|`` to about ``RTOL`` of ``int |kappa| ds``,
+        also where the curvature is concentrated, as at the tips of a thin ellipse. Only the rounding
+        of ``t`` limits it: a tip ``w`` wide in ``t`` costs about ``1e-16 / w`` (``ellipse(1, 1e-6)``:
+        ``4e-11`` relative).
+        """
+        _, _, integrals = _adaptive(lambda t: self.curvature(t) * self.speed(t), self.t0, self.t1)
+        return float(integrals.sum())
 
     # ------------------------------------------------------------------------ sampling
 
@@ -130,6 +187,8 @@ class SmoothCurve:
         """``n`` parameter values, equally spaced in ``"parameter"`` or in ``"arclength"``."""
         if uniform not in ("parameter", "arclength"):
             raise ValueError(f"uniform must be 'parameter' or 'arclength', got {uniform!r}")
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < (3 if self.closed else 2):
+            raise ValueError(f"n must be an integer >= {3 if self.closed else 2}, got {n!r}")
         count = n if self.closed else n - 1
         if uniform == "parameter":
             return self.t0 + (self.t1 - self.t0) * np.arange(n) / count
@@ -146,8 +205,7 @@ class SmoothCurve:
 
 def circle(radius=1.0, center=(0.0, 0.0), clockwise=True):
     """The circle ``center + r (cos t, -sin t)`` (clockwise) or ``(cos t, sin t)``: curvature ``+-1/r``."""
-    if not radius > 0:
-        raise ValueError(f"radius must be positive, got {radius!r}")
+    radius = _real(radius, "radius", 0.0, strict=True)
     return ellipse(radius, radius, center, clockwise, name=f"circle r={radius:g}")
 
 
@@ -156,7 +214,7 @@ def ellipse(a=2.0, b=1.0, center=(0.0, 0.0), clockwise=True, name=None):
 
     Clockwise, its curvature is ``kappa(t) = a b / (a^2 sin^2 t + b^2 cos^2 t)^(3/2)``.
     """
-    if not (a > 0 and b > 0):
+    if not (_real(a, "a") > 0 and _real(b, "b") > 0):
         raise ValueError(f"semi-axes must be positive, got a={a!r}, b={b!r}")
     cx, cy = center
     s = -1.0 if clockwise else 1.0

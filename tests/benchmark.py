@@ -4,8 +4,10 @@ For n = 10^3 ... 10^7 vertices of a regular polygon it times, in this one run,
   copy   : np.copy of the (n, 2) vertex array (the cheapest thing that touches every vertex),
   curve  : DiscreteCurve(vertices) and curvature(kind) for the three kinds, from scratch,
 and prints the best of several repeats of each and their ratio. It then checks the accuracy the
-input allows on a regular 10^6-gon, the peak memory of the n = 10^7 run, and the time one slider
-move of each explorer takes (ddg.explore).
+input allows on a regular 10^6-gon, the peak memory of the n = 10^7 run, the time one slider
+move of each explorer takes (ddg.explore), and how many curve-shortening steps per second
+ddg.flow takes at n = 10^2, 10^4, 10^6, explicit and semi-implicit (with the peak memory of one
+semi-implicit step: its linear solve is cyclic reduction, O(n)).
 
 Ratios, not seconds, are comparable between machines; the machines are shared, so run it twice
 before believing a difference of 20%.
@@ -36,25 +38,44 @@ def build_and_curvatures(vertices):
 
 
 def explorer_updates():
-    """One slider move of each explorer (recompute and redraw to PNG), n <= 1000: target well under 100 ms."""
-    from ddg.explore import InflationExplorer, PolygonExplorer, VertexExplorer
+    """One slider move of each explorer (recompute the scene and draw it as SVG), n <= 1000: target well under 100 ms."""
+    from ddg.explore import InflationExplorer, PolygonExplorer, VertexExplorer, svg
 
     cases = [
         (PolygonExplorer(), "n", [10, 100, 1000], "polygon explorer, n = {}"),
         (InflationExplorer(), "eps", [0.1, 0.5, 1.0], "inflation explorer, eps = {}"),
         (VertexExplorer(), "dx", [0.2, -0.4, 0.8], "vertex explorer, dx = {}"),
     ]
-    print(f"\n{'explorer update (compute + redraw)':40s} {'best [ms]':>10} {'median [ms]':>12}")
+    print(f"\n{'explorer update (scene + SVG)':40s} {'best [ms]':>10} {'median [ms]':>12}")
     for explorer, name, values, label in cases:
-        explorer.refresh()  # first draw: figure and background
         for value in values:
-            explorer.controls[name].value = value
             times = []
             for _ in range(15):
                 start = time.perf_counter()
-                explorer.refresh()
+                scene = explorer.scene(**{**explorer.values(), name: value})
+                [svg(scene, i) for i in range(len(scene.panels))]
                 times.append(time.perf_counter() - start)
             print(f"{label.format(value):40s} {min(times) * 1e3:>10.1f} {np.median(times) * 1e3:>12.1f}")
+
+
+def flow_steps_per_second():
+    """Steps per second of whole ddg.flow runs (step choice, move, checks, records) on a regular n-gon."""
+    from ddg.flow import _semi_implicit_step, flow
+
+    print(f"\n{'flow, sine, regular n-gon':>26} {'explicit [steps/s]':>19} {'semi-implicit [steps/s]':>24} "
+          f"{'semi-implicit step peak [MB]':>29}")
+    for exponent, steps in ((2, 400), (4, 100), (6, 4)):
+        n = 10**exponent
+        curve = ddg.regular_polygon(n)
+        rates = [flow(curve, "sine", 0.45, method=method, max_steps=steps, snapshots=0, progress=False)
+                 for method in ("explicit", "semi-implicit")]
+        gc.collect()
+        tracemalloc.start()
+        _semi_implicit_step(curve, "sine", 1e-3)
+        _, peak = tracemalloc.get_traced_memory()
+        tracemalloc.stop()
+        print(f"{f'n = 10^{exponent}':>26} " + " ".join(f"{run.steps / run.seconds:>{width}.1f}" for run, width
+                                                         in zip(rates, (19, 24))) + f" {peak / 1e6:>29.2f}")
 
 
 def main():
@@ -83,6 +104,7 @@ def main():
     print(f"n = 10^7: peak memory of build + curvatures {peak / 2**30:.2f} GiB "
           f"(+ {vertices.nbytes / 2**30:.2f} GiB input; need < 2 GB in all)")
     explorer_updates()
+    flow_steps_per_second()
 
 
 if __name__ == "__main__":
