@@ -1,0 +1,56 @@
+"""The student edition: exercises kept, solutions dropped, starters that raise, checks open and kept."""
+
+import json
+import pathlib
+
+import nbformat
+import numpy as np
+import pytest
+
+from ddg import checks, edition
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+NOTEBOOKS = sorted((ROOT / "book").glob("*.ipynb"))
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
+def test_every_exercise_stays_and_every_solution_goes(path):
+    nb = nbformat.read(path, as_version=4)
+    student = edition.student_notebook(nb)
+    text = "\n".join(cell.source for cell in student.cells)
+    assert "solution-start" not in text and "solution-end" not in text
+    assert text.count("{exercise}") == "\n".join(c.source for c in nb.cells).count("{exercise}")
+    assert not [c for c in student.cells if "solution" in c.metadata.get("tags", [])]
+    for cell in student.cells:
+        if {"starter", "check"} & set(cell.metadata.get("tags", [])):
+            assert "jupyter" not in cell.metadata, "a starter or check cell is folded for students"
+        if cell.cell_type == "code":
+            assert cell.outputs == [] and cell.execution_count is None
+    assert student.metadata["ddg"] == nb.metadata["ddg"]  # the exercises and their points, for grading
+
+
+def test_starters_raise_until_written_and_the_checks_say_so():
+    nb = edition.student_notebook(nbformat.read(ROOT / "book" / "03_winding_number.ipynb", as_version=4))
+    starters = [c.source for c in nb.cells if "starter" in c.metadata.get("tags", [])]
+    assert len(starters) == 2
+    env = {"np": np}
+    exec(starters[0], env)  # noqa: S102
+    with pytest.raises(NotImplementedError):
+        env["turning_angles"](np.eye(3))
+    feedback = checks.check_turning_angles(env["turning_angles"], seed=0)
+    assert not feedback and "not written yet" in feedback.problem
+
+
+def test_student_repository_and_launch_buttons(tmp_path):
+    out = edition.write_edition(ROOT, tmp_path / "with", student_repo="https://github.com/someone/course-students")
+    config = (out / "_config.yml").read_text()
+    assert "url: https://github.com/someone/course-students" in config and "binderhub_url: https://mybinder.org" in config
+    first = json.loads((out / "book" / "01_smooth_curves.ipynb").read_text())["cells"]
+    setup = "".join(next(c for c in first if c["cell_type"] == "code")["source"])
+    assert 'REPOSITORY = "https://github.com/someone/course-students"' in setup
+    out = edition.write_edition(ROOT, tmp_path / "without")
+    config = (out / "_config.yml").read_text()
+    assert "binderhub_url: ''" in config and "colab_url: ''" in config and "use_repository_button: false" in config
+    assert "rocket" not in config.split("launch:")[1].split("\n")[0]  # the intro promises no launch button
+    for name in ("ddg/checks.py", "pyproject.toml", "requirements.txt", "README.md", "_vendor", "book/_assets"):
+        assert (out / name).exists(), name
