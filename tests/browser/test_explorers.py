@@ -17,13 +17,19 @@ from ddg.explore import POLYGONS, InflationExplorer, PolygonExplorer, VertexExpl
 
 EXPLORERS = {"Polygons on a smooth curve": PolygonExplorer(), "Inflation": InflationExplorer(),
              "One vertex": VertexExplorer()}
-STEP = """([index, name, delta]) => {  // one control step, timed: the page draws synchronously
+SWEEP = """([index, k]) => {  // every step of one slider, timed: the page looks up and draws synchronously
     const root = document.querySelectorAll(".ddg-explorer")[index];
-    const input = [...root.querySelectorAll(".ddg-controls select, .ddg-controls input")][name];
-    const start = performance.now();
-    input.value = Number(input.value) + delta;
+    const input = [...root.querySelectorAll(".ddg-controls select, .ddg-controls input")][k];
+    const times = [], start = Number(input.value);
+    for (let value = 0; value <= Number(input.max); value++) {
+        const t0 = performance.now();
+        input.value = value;
+        input.dispatchEvent(new Event("input"));
+        times.push(performance.now() - t0);
+    }
+    input.value = start;
     input.dispatchEvent(new Event("input"));
-    return performance.now() - start;
+    return times;
 }"""
 
 
@@ -99,7 +105,7 @@ def test_every_control_redraws_and_the_numbers_agree_with_ddg(servers, browser, 
                     at_end = control.evaluate("e => Number(e.value) >= Number(e.max)")
                     control.focus()
                     page.keyboard.press("ArrowLeft" if at_end else "ArrowRight")  # the keyboard moves a slider
-                    timings.append(page.evaluate(STEP, [index, k, -1 if at_end else 1]))
+                    timings += page.evaluate(SWEEP, [index, k])
                 assert drawing(root) != before, f"{path} #{index}: control {k} changed nothing drawn"
                 check_numbers(root, title, f"{path} #{index}: after control {k}")
             play = root.locator(".ddg-play")
