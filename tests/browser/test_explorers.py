@@ -3,7 +3,7 @@
 For every explorer and animation of every page: each control (list, slider, play button, the
 dragged vertex) changes what is drawn, operated by keyboard where a reader would; the numbers and
 the text alternative shown agree with ddg computing the same state in Python. The time a control
-step takes in the page is written to _build/explorer-timings.json (a measurement, not a test).
+step takes in the page is written to _build/explorer-timings/ (a measurement, not a test).
 """
 
 import json
@@ -143,12 +143,11 @@ def test_every_control_redraws_and_the_numbers_agree_with_ddg(servers, browser, 
         assert not visit.unexpected_console() and not visit.outside and not visit.failed
     finally:
         visit.close()
-    out = ROOT / "_build" / "explorer-timings.json"
-    previous = json.loads(out.read_text()) if out.exists() else {}
-    if timings:
-        previous[f"{site}:{path}"] = {"steps": len(timings), "median_ms": float(np.median(timings)),
-                                      "max_ms": float(np.max(timings))}
-        out.write_text(json.dumps(previous, indent=1))
+    if timings:  # one file per page: the tests run in parallel
+        out = ROOT / "_build" / "explorer-timings" / f"{site}__{path.replace('/', '__')}.json"
+        out.parent.mkdir(parents=True, exist_ok=True)
+        out.write_text(json.dumps({"steps": len(timings), "median_ms": float(np.median(timings)),
+                                   "max_ms": float(np.max(timings))}))
 
 
 def test_explorers_and_animations_are_on_their_pages():
