@@ -47,6 +47,15 @@ COUNTS = """() => {
 }"""
 
 
+def stop(server):
+    """End a server and everything it started (its process group)."""
+    os.killpg(server.pid, signal.SIGTERM)
+    try:
+        server.wait(timeout=20)
+    except subprocess.TimeoutExpired:
+        os.killpg(server.pid, signal.SIGKILL)
+
+
 def free_port():
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
@@ -86,11 +95,7 @@ def lab(tmp_path):
                 time.sleep(0.5)
         yield url, token
     finally:
-        os.killpg(server.pid, signal.SIGTERM)
-        try:
-            server.wait(timeout=20)
-        except subprocess.TimeoutExpired:
-            os.killpg(server.pid, signal.SIGKILL)
+        stop(server)
         log.close()
 
 
@@ -177,8 +182,4 @@ def test_make_lab_starts_jupyterlab_on_the_notebooks_and_prints_its_url(tmp_path
         contents = json.loads(urllib.request.urlopen(url.replace("/lab?", "/api/contents?"), timeout=10).read())
         assert CHAPTER in {item["name"] for item in contents["content"]}  # it serves book/
     finally:
-        os.killpg(server.pid, signal.SIGTERM)
-        try:
-            server.wait(timeout=20)
-        except subprocess.TimeoutExpired:
-            os.killpg(server.pid, signal.SIGKILL)
+        stop(server)
