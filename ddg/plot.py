@@ -55,7 +55,7 @@ def show(fig, alt, caption=None):
         raise ValueError("write the alt text and caption in plain words (ψ, ε, π are fine), without $...$ math")
     metadata = {"Description": alt, **({"Title": caption} if caption else {})}
     buffer = io.BytesIO()
-    fig.savefig(buffer, format="png", metadata=metadata, bbox_inches="tight")
+    fig.savefig(buffer, format="png", metadata=metadata, bbox_inches="tight", pad_inches=0.03)
     plt.close(fig)
     display(Image(buffer.getvalue()))
 
