@@ -639,7 +639,10 @@ def _star_shaped(rng):
     and none by more than 100 degrees, and edges that are not neighbours stay at least 0.5 apart. Then inflating by ``eps <= 0.2`` changes the
     region only near each edge and each corner.
     """
-    import shapely
+    try:
+        import shapely
+    except ImportError as error:
+        raise missing("checks", error) from error
 
     while True:  # candidates in batches: about one in a thousand has room
         n = int(rng.integers(5, 8))

@@ -11,7 +11,7 @@ import re
 
 import numpy as np
 import pytest
-from conftest import ROOT, SITES, Visit, pages
+from browser_helpers import ROOT, SITES, Visit, pages
 
 from ddg.explore import POLYGONS, InflationExplorer, PolygonExplorer, VertexExplorer, measured_region
 

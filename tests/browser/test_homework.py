@@ -3,7 +3,7 @@
 import re
 
 import pytest
-from conftest import SITES, Visit, pages
+from browser_helpers import SITES, Visit, pages
 
 
 def solution_pages():

@@ -12,7 +12,7 @@ import pathlib
 from urllib.parse import unquote, urljoin, urlparse
 
 import pytest
-from conftest import SITES, Visit, pages
+from browser_helpers import SITES, Visit, pages
 
 axe_module = pytest.importorskip("axe_playwright_python.sync_playwright")
 

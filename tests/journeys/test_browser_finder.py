@@ -6,7 +6,7 @@ import sys
 import time
 
 import pytest
-from conftest import ROOT, run
+from journey_helpers import ROOT, run
 
 
 def test_without_a_browser_the_first_step_says_what_to_install(tmp_path):

@@ -14,7 +14,7 @@ import json
 import re
 import threading
 
-from conftest import OFFLINE_PIP, ROOT, copy_repository, fresh_venv, run
+from journey_helpers import OFFLINE_PIP, ROOT, copy_repository, fresh_venv, run
 
 CHAPTER = "02_discrete_curves"
 RUN = r"""

@@ -16,7 +16,7 @@ import time
 
 import nbformat
 import pytest
-from conftest import ROOT, run
+from journey_helpers import ROOT, run
 
 from ddg import edition
 

@@ -5,7 +5,7 @@ next to numpy. `import ddg`, the three curvatures and the flow must work there; 
 parts must fail with a message that names the extra to install.
 """
 
-from conftest import OFFLINE_PIP, copy_repository, fresh_venv, run
+from journey_helpers import OFFLINE_PIP, copy_repository, fresh_venv, run
 
 SCRIPT = r"""
 import importlib, subprocess, sys
@@ -26,15 +26,27 @@ run = ddg.flow.flow(ddg.regular_polygon(24), "sine", 0.05)
 assert run.stopped == "reached t_end" and run.areas[-1] < run.areas[0]
 print("geometry ok:", {kind: round(float(v[0]), 6) for kind, v in k.items()}, run.stopped)
 
-for module, extra in (("ddg.plot", "plot"), ("ddg.explore", "explore"), ("ddg.edition", "edition")):
+from ddg import explore  # its scenes need numpy only; widgets and shapely come with the extra
+scene = explore.PolygonExplorer().scene(12, "ellipse", "angle")
+assert "<svg" in explore.svg(scene, 0)
+uses = {
+    "ddg.plot": lambda: importlib.import_module("ddg.plot"),
+    "ddg.explore widgets": lambda: explore.polygon_explorer().widget(),
+    "ddg.explore shapely": lambda: explore.InflationExplorer().compute(0.3, "non-convex star", "offset"),
+    "ddg.edition": lambda: importlib.import_module("ddg.edition").student_notebook({}),
+    "ddg.checks shapely": lambda: importlib.import_module("ddg.checks").run(
+        "minkowski_area", lambda curve, eps: 0.0, 0, isolate=False),
+}
+extras = {"ddg.plot": "plot", "ddg.explore widgets": "explore", "ddg.explore shapely": "explore",
+          "ddg.edition": "edition", "ddg.checks shapely": "checks"}
+for name, use in uses.items():
     try:
-        importlib.import_module(module)
-        getattr(sys.modules[module], "student_notebook", lambda nb: None)({})
+        use()
     except ImportError as error:
-        assert f'pip install "ddg-plane-curves[{extra}]"' in str(error), str(error)
-        print(f"{module}: {error}")
+        assert f'pip install "ddg-plane-curves[{extras[name]}]"' in str(error), str(error)
+        print(f"{name}: {error}")
     else:
-        raise AssertionError(f"{module} worked without its extra")
+        raise AssertionError(f"{name} worked without its extra")
 try:
     ddg.plot
 except ImportError as error:

@@ -19,7 +19,7 @@ import urllib.error
 import urllib.request
 
 import pytest
-from conftest import ROOT, VENV
+from journey_helpers import ROOT, VENV
 
 from tools.browser import find as find_chromium
 

@@ -10,7 +10,7 @@ import re
 
 import pytest
 from bs4 import BeautifulSoup
-from conftest import ROOT
+from journey_helpers import ROOT
 from pypdf import PdfReader
 from test_student_site import normalize, probes
 

@@ -9,7 +9,7 @@ gates on (`make book-strict`) must fail, although `make book` has just succeeded
 import re
 import shutil
 
-from conftest import ROOT, copy_repository, run
+from journey_helpers import ROOT, copy_repository, run
 
 
 def test_make_book_shows_a_change_in_ddg_and_the_strict_build_catches_a_broken_ddg(tmp_path):
@@ -20,7 +20,7 @@ def test_make_book_shows_a_change_in_ddg_and_the_strict_build_catches_a_broken_d
     else:
         run(["make", "book"], cwd=copy)
     page = copy / "_build" / "html" / "book" / "02_discrete_curves.html"
-    assert "passed 3 checks on fresh random input" in page.read_text()
+    assert re.search(r"passed \d+ checks on fresh random input", page.read_text())
 
     checks = copy / "ddg" / "checks.py"
     source = checks.read_text()

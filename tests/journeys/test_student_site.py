@@ -13,7 +13,7 @@ import re
 
 import pytest
 from bs4 import BeautifulSoup
-from conftest import ROOT
+from journey_helpers import ROOT
 
 from tools.notebooks import solution_cells
 

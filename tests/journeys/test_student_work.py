@@ -2,7 +2,7 @@
 
 import json
 
-from conftest import copy_repository, run
+from journey_helpers import copy_repository, run
 
 
 def test_student_answers_are_never_deleted(tmp_path):

@@ -1,0 +1,113 @@
+"""Helpers of the browser tests (the fixtures are in conftest.py). The built sites in a real browser: Chromium (found by tools/browser.py) driven by Playwright.
+
+Both sites that `make test` builds are served on 127.0.0.1: the book (_build/html) and the student
+edition (_build/student/html). Every request that leaves loopback is recorded and cut off.
+Screenshots go to _build/screenshots/<site>/<view>/ (`make test` empties it first).
+"""
+
+import functools
+import http.server
+import pathlib
+import re
+import threading
+
+import pytest
+
+from tools.browser import find as find_chromium
+
+sync_api = pytest.importorskip("playwright.sync_api")
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+SITES = {"book": ROOT / "_build" / "html", "student": ROOT / "_build" / "student" / "html"}
+SHOTS = ROOT / "_build" / "screenshots"
+FLAGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking",
+         "--disable-component-update", "--disable-sync"]
+VIEWS = {"desktop": {"width": 1280, "dark": False}, "phone": {"width": 390, "dark": False},
+         "dark": {"width": 1280, "dark": True}}
+
+# Console errors this stack is known to print, harmless to a reader (GUIDE §5):
+ALLOWED_CONSOLE = [
+    r"Identifier 'THEBE_JS_URL' has already been declared",  # sphinx-thebe declares it twice
+    r"Got invalid theme mode",                               # the theme, before it reads the stored mode
+]
+
+
+def pages(site):
+    folder = SITES[site]
+    if not folder.exists():
+        return []
+    return sorted(str(p.relative_to(folder)) for p in folder.rglob("*.html") if "_static" not in p.parts
+                  and p.name not in ("genindex.html", "search.html"))
+
+
+@pytest.fixture(scope="session")
+def servers():
+    """One loopback server per built site: {site: base URL}."""
+    urls, running = {}, []
+
+    class Quiet(http.server.SimpleHTTPRequestHandler):
+        def log_message(self, *args):
+            pass
+
+    for site, folder in SITES.items():
+        if not (folder / "index.html").exists():
+            pytest.fail(f"no {site} site in {folder}: run `make test` (it builds both)")
+        httpd = http.server.ThreadingHTTPServer(("127.0.0.1", 0), functools.partial(Quiet, directory=str(folder)))
+        threading.Thread(target=httpd.serve_forever, daemon=True).start()
+        urls[site] = f"http://127.0.0.1:{httpd.server_port}/"
+        running.append(httpd)
+    yield urls
+    for httpd in running:
+        httpd.shutdown()
+
+
+@pytest.fixture(scope="session")
+def browser():
+    chromium = find_chromium()
+    if chromium is None:
+        pytest.fail("no Chromium: run `make test`, whose first step finds or installs one")
+    with sync_api.sync_playwright() as p:
+        launched = p.chromium.launch(executable_path=chromium, args=FLAGS)
+        yield launched
+        launched.close()
+
+
+class Visit:
+    """One page load in one view, with every request, failure and console message recorded."""
+
+    def __init__(self, browser, base, path, view="desktop"):
+        self.base, self.outside, self.failed, self.console = base, [], [], []
+        self.ignoring = False  # requests made by axe itself are not the site's
+        width, dark = VIEWS[view]["width"], VIEWS[view]["dark"]
+        self.context = browser.new_context(viewport={"width": width, "height": 900},
+                                           color_scheme="dark" if dark else "light")
+        self.context.route("**/*", self._route)
+        self.page = self.context.new_page()
+        self.page.on("console", lambda m: m.type == "error" and not self.ignoring and self.console.append(m.text))
+        self.page.on("pageerror", lambda e: self.console.append(str(e)))
+        self.page.on("response", lambda r: r.status >= 400 and not self.ignoring and self.failed.append(f"{r.status} {r.url}"))
+        self.page.on("requestfailed", lambda r: not self.ignoring and self.failed.append(f"failed {r.url}: {r.failure}"))
+        self.page.goto(base + path, wait_until="networkidle")
+        if self.page.locator(".math").count():  # a page with math: wait until MathJax has typeset it
+            self.page.wait_for_selector("mjx-container", state="attached", timeout=20000)
+        self.page.wait_for_timeout(200)
+
+    def _route(self, route):
+        url = route.request.url
+        if url.startswith(self.base) or url.startswith(("data:", "blob:")):
+            route.continue_()
+        else:  # nothing may leave loopback: record it and cut it off
+            self.outside.append(url)
+            route.abort()
+
+    def unexpected_console(self):
+        return [m for m in self.console if not any(re.search(a, m) for a in ALLOWED_CONSOLE)]
+
+    def screenshot(self, site, view, path):
+        folder = SHOTS / site / view
+        folder.mkdir(parents=True, exist_ok=True)
+        self.page.screenshot(path=str(folder / (path.replace("/", "__").removesuffix(".html") + ".png")),
+                             full_page=True)
+
+    def close(self):
+        self.context.close()
