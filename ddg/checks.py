@@ -65,9 +65,10 @@ class Feedback:
         return f"✗ {self.name}: {self.problem}"
 
     def _repr_html_(self):
-        color = "#116329" if self.passed else "#a40e26"  # dark enough for the light and the dark theme
+        color = "#116329" if self.passed else "#a40e26"  # on a light box, in the light and the dark theme
         text = repr(self).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
-        return f'<pre style="color: {color}; white-space: pre-wrap">{text}</pre>'
+        return (f'<pre style="color: {color}; background: #f6f8fa; padding: 0.4em 0.6em; '
+                f'white-space: pre-wrap">{text}</pre>')
 
 
 class _Problem(Exception):

@@ -243,7 +243,8 @@ class Explorer:
         raise NotImplementedError
 
     def key(self, values):
-        return "|".join(str(values[c["name"]]) for c in self.controls)
+        """The state's name: its control values as the page's script writes them (1.0 as "1")."""
+        return "|".join(_key_text(values[c["name"]]) for c in self.controls)
 
     def states(self):
         """Every state a reader of the static page can reach, by key."""
@@ -328,6 +329,13 @@ class Explorer:
         except ImportError:
             return bundle
         return {**box._repr_mimebundle_(**kwargs), **{k: v for k, v in bundle.items() if k != "text/plain"}}
+
+
+def _key_text(value):
+    """A control value as JavaScript's ``String()`` writes it: 0.0 is "0", 0.15 is "0.15"."""
+    if isinstance(value, float) and value.is_integer():
+        return str(int(value))
+    return str(value)
 
 
 def _nice_ticks(low, high, count=5):

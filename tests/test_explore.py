@@ -83,6 +83,16 @@ def test_the_static_page_offers_the_nearest_value_of_a_live_one():
     assert packed(VertexExplorer(0.3, -0.2))["value"] == "0.3|-0.15"
 
 
+def test_state_names_are_written_as_the_page_writes_them():
+    """The page names a state by String() of its control values: 0.0 is "0", 1.0 is "1"."""
+    for explorer in (VertexExplorer(0.0, 0.0), InflationExplorer(eps=1.0)):
+        data = packed(explorer)
+        for combo in zip(*(c["options"] for c in data["controls"])):
+            key = "|".join(str(int(v)) if isinstance(v, float) and v.is_integer() else str(v) for v in combo)
+            assert key in data["states"], key
+    assert packed(VertexExplorer(0.0, 0.0))["value"] == "0|0"
+
+
 def test_live_widgets_recompute_on_every_change():
     for explorer in (polygon_explorer(), inflation_explorer(), vertex_explorer()):
         box = explorer.widget()

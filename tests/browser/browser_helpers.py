@@ -13,15 +13,12 @@ import threading
 
 import pytest
 
-from tools.browser import find as find_chromium
 
 sync_api = pytest.importorskip("playwright.sync_api")
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 SITES = {"book": ROOT / "_build" / "html", "student": ROOT / "_build" / "student" / "html"}
 SHOTS = ROOT / "_build" / "screenshots"
-FLAGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking",
-         "--disable-component-update", "--disable-sync"]
 VIEWS = {"desktop": {"width": 1280, "dark": False}, "phone": {"width": 390, "dark": False},
          "dark": {"width": 1280, "dark": True}}
 
@@ -59,17 +56,6 @@ def servers():
     yield urls
     for httpd in running:
         httpd.shutdown()
-
-
-@pytest.fixture(scope="session")
-def browser():
-    chromium = find_chromium()
-    if chromium is None:
-        pytest.fail("no Chromium: run `make test`, whose first step finds or installs one")
-    with sync_api.sync_playwright() as p:
-        launched = p.chromium.launch(executable_path=chromium, args=FLAGS)
-        yield launched
-        launched.close()
 
 
 class Visit:

@@ -1,3 +1,4 @@
-"""Fixtures of the browser tests: a loopback server per site, one Chromium (browser_helpers.py)."""
+"""Fixtures of the browser tests: a loopback server per site (browser_helpers.py); the browser
+itself is the session's (tests/conftest.py)."""
 
-from browser_helpers import browser, servers  # noqa: F401
+from browser_helpers import servers  # noqa: F401

@@ -21,13 +21,8 @@ import urllib.request
 import pytest
 from journey_helpers import ROOT, VENV
 
-from tools.browser import find as find_chromium
-
-sync_api = pytest.importorskip("playwright.sync_api")
 
 CHAPTER = "02_discrete_curves.ipynb"
-FLAGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking",
-         "--disable-component-update", "--disable-sync"]
 # JupyterLab settings for a test: every cell rendered (no windowing), no news or update checks
 SETTINGS = {
     "@jupyterlab/notebook-extension/tracker.jupyterlab-settings": {"windowingMode": "none"},
@@ -99,14 +94,12 @@ def lab(tmp_path):
         log.close()
 
 
-def test_chapter_renders_like_the_book_and_runs_in_jupyterlab(lab):
+def test_chapter_renders_like_the_book_and_runs_in_jupyterlab(lab, browser):
     url, token = lab
-    chromium = find_chromium()
-    assert chromium, "no Chromium: run `make test`, which finds or installs one"
     outside = []
-    with sync_api.sync_playwright() as p:
-        browser = p.chromium.launch(executable_path=chromium, args=FLAGS)
-        page = browser.new_page(viewport={"width": 1280, "height": 900})
+    context = browser.new_context(viewport={"width": 1280, "height": 900})
+    try:
+        page = context.new_page()
 
         def route(r):
             if r.request.url.startswith(url) or r.request.url.startswith(("data:", "blob:")):
@@ -147,7 +140,8 @@ def test_chapter_renders_like_the_book_and_runs_in_jupyterlab(lab):
         assert page.locator(".jp-RenderedImage img").count() >= 2  # the chapter's figures
         assert page.locator(".jp-OutputArea-output", has_text="passed").count() >= 2  # the checks ran
         page.screenshot(path=str(ROOT / "_build" / "lab-journey.png"))
-        browser.close()
+    finally:
+        context.close()
     assert not outside, f"JupyterLab requested outside loopback: {outside[:5]}"
 
 
