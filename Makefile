@@ -70,7 +70,7 @@ test: $(ENV) $(VENDOR)
 	$(MAKE) student
 	$(MAKE) pdf
 	rm -rf _build/screenshots
-	$(PY) -m pytest -n 2 --dist loadfile tests/browser tests/journeys
+	$(PY) -m pytest -n 2 --dist worksteal tests/browser tests/journeys
 
 # JupyterLab on the chapter notebooks; it prints the URL to open (with its token).
 lab: $(ENV)

@@ -59,24 +59,36 @@ def servers():
 
 
 class Visit:
-    """One page load in one view, with every request, failure and console message recorded."""
+    """One page load, with every request, failure and console message recorded.
+
+    The page is loaded once at desktop width in the light theme; `show(view)` then turns the same
+    page into another view the way a reader's device would: a narrower window (the page lays
+    itself out again) or the system switching to dark (the theme follows it live).
+    """
 
     def __init__(self, browser, base, path, view="desktop"):
         self.base, self.outside, self.failed, self.console = base, [], [], []
         self.ignoring = False  # requests made by axe itself are not the site's
-        width, dark = VIEWS[view]["width"], VIEWS[view]["dark"]
-        self.context = browser.new_context(viewport={"width": width, "height": 900},
-                                           color_scheme="dark" if dark else "light")
+        self.context = browser.new_context(viewport={"width": 1280, "height": 900}, color_scheme="light")
         self.context.route("**/*", self._route)
         self.page = self.context.new_page()
         self.page.on("console", lambda m: m.type == "error" and not self.ignoring and self.console.append(m.text))
         self.page.on("pageerror", lambda e: self.console.append(str(e)))
         self.page.on("response", lambda r: r.status >= 400 and not self.ignoring and self.failed.append(f"{r.status} {r.url}"))
         self.page.on("requestfailed", lambda r: not self.ignoring and self.failed.append(f"failed {r.url}: {r.failure}"))
-        self.page.goto(base + path, wait_until="networkidle")
+        self.page.goto(base + path, wait_until="load")
         if self.page.locator(".math").count():  # a page with math: wait until MathJax has typeset it
             self.page.wait_for_selector("mjx-container", state="attached", timeout=20000)
-        self.page.wait_for_timeout(200)
+            self.page.evaluate("() => window.MathJax?.startup?.promise?.then(() => true)")  # typesetting done
+        self.show(view)
+
+    def show(self, view):
+        """Turn the loaded page into `view`: its window width and its system colour scheme."""
+        width, dark = VIEWS[view]["width"], VIEWS[view]["dark"]
+        self.page.emulate_media(color_scheme="dark" if dark else "light")
+        self.page.set_viewport_size({"width": width, "height": 900})
+        self.page.evaluate("() => new Promise(r => requestAnimationFrame(() => requestAnimationFrame(r)))")
+        self.page.wait_for_timeout(100)
 
     def _route(self, route):
         url = route.request.url
@@ -92,8 +104,8 @@ class Visit:
     def screenshot(self, site, view, path):
         folder = SHOTS / site / view
         folder.mkdir(parents=True, exist_ok=True)
-        self.page.screenshot(path=str(folder / (path.replace("/", "__").removesuffix(".html") + ".png")),
-                             full_page=True)
+        self.page.screenshot(path=str(folder / (path.replace("/", "__").removesuffix(".html") + ".jpg")),
+                             full_page=True, type="jpeg", quality=70)
 
     def close(self):
         self.context.close()
