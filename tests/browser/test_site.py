@@ -2,7 +2,7 @@
 
 On each page: nothing requested outside loopback and nothing failing, no unexpected console
 error, every local link resolving, math typeset with no TeX left in the visible text, exactly one
-visible h1, no code or output box scrolling sideways at 1280 px, no page scrolling sideways at
+visible h1, no code or output box scrolling sideways and small figures side by side at 1280 px, no page scrolling sideways at
 390 px (wide tables and equations scroll inside their own box, with a visible cue), figures not
 shrunk on a phone and not dimmed on the dark theme, and no serious or critical violation of
 axe-core's WCAG 2 A/AA rules. A screenshot of each page in each view is saved.
@@ -52,6 +52,12 @@ SHRUNK = r"""() => [...document.querySelectorAll("main .cell_output img")]
 DIMMED = r"""() => [...document.querySelectorAll("main .cell_output img, main figure img")]
     .filter(img => getComputedStyle(img).filter !== "none").map(img => img.alt.slice(0, 50))"""
 
+STACKED = r"""() => [...document.querySelectorAll("main .cell_output")]
+    .map(out => [...out.querySelectorAll(":scope > figure.ddg-figure-caption")])
+    .filter(figs => figs.length >= 2 && figs.every(f => f.getBoundingClientRect().width <= 340))
+    .filter(figs => figs[0].getBoundingClientRect().top !== figs[1].getBoundingClientRect().top)
+    .map(figs => figs[0].textContent.trim().slice(0, 50))"""
+
 VISIBLE_H1 = "() => [...document.querySelectorAll('h1')].filter(h => h.getClientRects().length).map(h => h.textContent.trim())"
 
 
@@ -100,6 +106,7 @@ def test_page_reads_right_in_every_view(servers, browser, site, path):
                 problems += [f"visible h1: {h}"] if len(h := page.evaluate(VISIBLE_H1)) != 1 else []
                 boxes = page.evaluate(SIDEWAYS, "main div.highlight pre, main .cell_output .output")
                 problems += [f"boxes that scroll sideways at 1280 px: {boxes[:3]}"] if boxes else []
+                problems += [f"small figures stacked at 1280 px: {f[:3]}"] if (f := page.evaluate(STACKED)) else []
             if view == "phone":
                 wider = page.evaluate(PAGE_IS_WIDER)
                 problems += [f"the page scrolls sideways by {wider} px at 390 px"] if wider > 1 else []
