@@ -2,10 +2,11 @@
 
 On each page: nothing requested outside loopback and nothing failing, no unexpected console
 error, every local link resolving, math typeset with no TeX left in the visible text, exactly one
-visible h1, no code or output box scrolling sideways and small figures side by side at 1280 px, no page scrolling sideways at
-390 px (wide tables and equations scroll inside their own box, with a visible cue), figures not
-shrunk on a phone and not dimmed on the dark theme, and no serious or critical violation of
-axe-core's WCAG 2 A/AA rules. A screenshot of each page in each view is saved.
+visible h1, at 1280 px no code or output box scrolling sideways and small figures side by side,
+at 390 px no page scrolling sideways (wide tables and equations scroll inside their own box, with
+a visible cue) and figures not shrunk, on the dark theme figures not dimmed, and no serious or
+critical violation of axe-core's WCAG 2 A/AA rules. A screenshot of each page in each view is
+saved.
 """
 
 import pathlib
