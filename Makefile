@@ -16,6 +16,8 @@ VENDOR := $(VENV)/vendor/.installed
 export PYTHONPATH := $(CURDIR)
 # What the pages are computed from: a change here means every notebook must run again.
 INPUTS = $$(find ddg -name '*.py' | sort | xargs cat requirements.txt _config.yml | cksum)
+# What every page carries but Sphinx does not watch: the book's stylesheet, scripts and extension.
+ASSETS = $$(find book/_assets tools/sphinx_figures.py -type f | sort | xargs cat | cksum)
 
 .PHONY: book book-strict test lab bench student pdf dist repo clean
 
@@ -44,19 +46,24 @@ $(VENDOR): $(ENV) tools/vendor.py
 # The book. Sphinx re-reads only pages whose source changed and the notebook cache knows only
 # code cells, so when ddg/, the pins or the configuration changed since the last build, the
 # cache and Sphinx's state are dropped: every notebook runs again and every page is rebuilt.
+# When only the book's assets changed, every page is written again from the cached outputs.
 book: $(ENV) $(VENDOR)
 	@$(PY) tools/repo.py --from-git
-	@inputs="$(INPUTS)"; if [ "$$(cat _build/.inputs 2>/dev/null)" != "$$inputs" ]; then \
+	@inputs="$(INPUTS)"; assets="$(ASSETS)"; \
+	if [ "$$(cat _build/.inputs 2>/dev/null)" != "$$inputs" ]; then \
 		[ -d _build/.doctrees ] && echo "ddg/, the pins or _config.yml changed: every notebook runs again"; \
-		rm -rf _build/.jupyter_cache _build/.doctrees _build/html; fi; \
-	$(JB) build . && mkdir -p _build && echo "$$inputs" > _build/.inputs
+		rm -rf _build/.jupyter_cache _build/.doctrees _build/html; \
+	elif [ "$$(cat _build/.assets 2>/dev/null)" != "$$assets" ]; then \
+		[ -d _build/.doctrees ] && echo "book/_assets or tools/sphinx_figures.py changed: every page is written again"; \
+		rm -rf _build/.doctrees _build/html; fi; \
+	$(JB) build . && mkdir -p _build && echo "$$inputs" > _build/.inputs && echo "$$assets" > _build/.assets
 	@echo "The book is at $(CURDIR)/_build/html/index.html"
 
 # The build `make test` gates on: re-reads every page and re-executes every notebook, whatever was
 # built before; any warning, stray stderr or failing cell fails it.
 book-strict: $(ENV) $(VENDOR)
-	@inputs="$(INPUTS)"; rm -rf _build/.jupyter_cache && \
-	$(JB) build . --all -W -n --keep-going && echo "$$inputs" > _build/.inputs
+	@inputs="$(INPUTS)"; assets="$(ASSETS)"; rm -rf _build/.jupyter_cache && \
+	$(JB) build . --all -W -n --keep-going && echo "$$inputs" > _build/.inputs && echo "$$assets" > _build/.assets
 
 # First a browser (found or installed, or one line saying what to install), then the unit tests
 # and every notebook (nbval), the strict build, the student edition, and what runs on the built
@@ -70,7 +77,7 @@ test: $(ENV) $(VENDOR)
 	$(MAKE) student
 	$(MAKE) pdf
 	rm -rf _build/screenshots
-	$(PY) -m pytest -n 2 --dist worksteal tests/browser tests/journeys
+	$(PY) -m pytest -n 2 --dist worksteal --durations=12 tests/browser tests/journeys
 
 # JupyterLab on the chapter notebooks; it prints the URL to open (with its token).
 lab: $(ENV)

@@ -2,7 +2,8 @@
 
 In a temporary copy of the repository (sharing .venv, whose pins are the same), with the book
 already built there: a message that ddg prints changes, and the next `make book` must run every
-notebook again and show the new message. Then ddg/plot.py is broken, and the build `make test`
+notebook again and show the new message. Then the book's stylesheet changes, and the next
+`make book` must serve the new one on every page without running a notebook. Then ddg/plot.py is broken, and the build `make test`
 gates on (`make book-strict`) must fail, although `make book` has just succeeded.
 """
 
@@ -33,6 +34,14 @@ def test_make_book_shows_a_change_in_ddg_and_the_strict_build_catches_a_broken_d
         html = (copy / "_build" / "html" / "book" / f"{chapter}.html").read_text()
         assert "(rebuilt after a change to ddg)" in html, chapter
         assert "on fresh random input" not in html, chapter
+
+    css = copy / "book" / "_assets" / "ddg-book.css"
+    css.write_text(css.read_text() + "\n/* restyled after the first build */\n")
+    result = run(["make", "book"], cwd=copy)
+    assert "every page is written again" in result.stdout and "every notebook runs again" not in result.stdout
+    assert "executing" not in result.stdout.lower(), "a change of the stylesheet ran the notebooks again"
+    assert "restyled after the first build" in (copy / "_build" / "html" / "_static" / "ddg-book.css").read_text()
+    assert "(rebuilt after a change to ddg)" in (copy / "_build" / "html" / "book" / "02_discrete_curves.html").read_text()
 
     plot = copy / "ddg" / "plot.py"
     plot.write_text(plot.read_text() + "\nraise RuntimeError('ddg.plot is broken on purpose')\n")
