@@ -15,7 +15,7 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
-from hypothesis import assume, event, given, settings
+from hypothesis import assume, event, example, given, settings
 from hypothesis import strategies as st
 
 import ddg
@@ -354,7 +354,12 @@ def exact_geometry(v):
             continue
         psi.append(math.atan2(float(minus_cross), float(dot)))
         ab = lengths[i - 1] * lengths[i]
-        t = float(minus_cross) / (ab + float(dot)) if dot >= 0 else (ab - float(dot)) / float(minus_cross)
+        if dot >= 0:
+            t = float(minus_cross) / (ab + float(dot))
+        elif float(minus_cross) == 0:  # |tan(psi/2)| beyond the largest float: within rounding of a reversal
+            t = math.inf if minus_cross > 0 else -math.inf
+        else:
+            t = (ab - float(dot)) / float(minus_cross)
         tan_half.append(t)
     return np.array(psi), np.array(tan_half), np.array(lengths)
 
@@ -375,6 +380,8 @@ def close(actual, desired, tolerance):
 
 @settings(max_examples=300, deadline=None)
 @given(hostile())
+@example((np.array([[0.0, 0.0], [1.0, 5e-324], [1.1, 5e-324]]), 0))  # the cross product underflows to 0
+@example((np.array([[0.0, 0.0], [1.0, 5e-324], [1.1, 5e-324]]), 500))
 def test_hostile_polygons_have_exact_lengths_angles_and_curvatures(polygon):
     v, k = polygon
     c = curve_or_equal_vertices(np.ldexp(v, k))
