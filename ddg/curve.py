@@ -470,7 +470,8 @@ class DiscreteCurve:
         These are the lecture's formulas; they are the true area of the inflated region when the
         polygon is convex and clockwise. (For other curves, compare with :meth:`inflate`.)
         ``eps < 0`` (erosion) raises ``ValueError``: the formulas hold only until an edge
-        collapses. Inflating the reversed curve moves the edges the other way.
+        collapses. Inflating the reversed curve moves the edges the other way. An area beyond the
+        largest float raises ``ValueError`` too.
         """
         _choose(method, INFLATIONS, "inflation method")
         self._require_closed("inflation")
@@ -481,7 +482,12 @@ class DiscreteCurve:
             quadratic = 0.5 * float(self.turning_angles.sum())
         else:
             quadratic = 0.5 * self.total_curvature("tangent")
-        return self.signed_area + eps * self.length + eps * eps * quadratic
+        with np.errstate(over="ignore", invalid="ignore"):
+            area = self.signed_area + eps * self.length + eps * eps * quadratic
+        if not np.isfinite(area):
+            raise ValueError("the inflated area is larger than the largest float (about 1.8e308); "
+                             "scale the curve or eps down")
+        return area
 
     def inflate(self, eps, method="minkowski"):
         """The boundary of the inflated region as a new closed :class:`DiscreteCurve`.

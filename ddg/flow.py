@@ -72,7 +72,7 @@ def _travel_step(curve, kind):
     """The time in which the fastest vertex, relative to its shorter edge, crosses that edge."""
     lengths = curve.edge_lengths
     h = np.minimum(lengths, np.roll(lengths, 1))  # the shorter edge at each vertex
-    with np.errstate(divide="ignore"):  # a straight vertex (k = 0) does not move
+    with np.errstate(divide="ignore", over="ignore"):  # a straight vertex (k = 0, or nearly) sets no limit
         return float(np.min(h / np.abs(curve.curvature(kind))))
 
 

@@ -19,7 +19,9 @@ _GL_X, _GL_W = np.polynomial.legendre.leggauss(8)
 _GL_X, _GL_W = (_GL_X + 1) / 2, _GL_W / 2
 
 RTOL = 1e-13
-"""Relative accuracy of the adaptive quadrature behind arc length and total curvature."""
+"""Relative accuracy the adaptive quadrature behind arc length and total curvature aims at. Its error
+estimate can be fooled by chance near a narrow feature: on 1500 ellipses with b / a from 1 to 1e-6
+the worst length was 4e-13 off (relative)."""
 
 _EPS = np.finfo(float).eps
 
