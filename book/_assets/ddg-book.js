@@ -23,7 +23,23 @@ document.addEventListener("DOMContentLoaded", function () {
       box.appendChild(element);
     }
   });
+  // An inline formula wider than its column (on a phone) gets a line of its own that scrolls.
+  function wideInline() {
+    var formulas = document.querySelectorAll('main mjx-container:not([display="true"])');
+    formulas.forEach(function (m) { m.classList.remove("ddg-scroll", "ddg-inline-wide"); });
+    var wide = [];
+    formulas.forEach(function (m) {
+      var block = m.parentElement;
+      while (block && getComputedStyle(block).display.indexOf("inline") === 0) { block = block.parentElement; }
+      if (!block || !m.getClientRects().length) { return; }
+      var style = getComputedStyle(block);
+      var column = block.clientWidth - parseFloat(style.paddingLeft) - parseFloat(style.paddingRight);
+      if (m.getBoundingClientRect().width > column + 1) { wide.push(m); }
+    });
+    wide.forEach(function (m) { m.classList.add("ddg-scroll", "ddg-inline-wide"); });
+  }
   function cue() {
+    wideInline();
     document.querySelectorAll(".ddg-scroll").forEach(function (box) {
       box.classList.toggle("ddg-overflows", box.scrollWidth > box.clientWidth + 1);
     });

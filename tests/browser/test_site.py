@@ -38,6 +38,9 @@ SIDEWAYS = r"""(selector) => [...document.querySelectorAll(selector)]
     .filter(e => e.getClientRects().length && e.scrollWidth > e.clientWidth + 1)
     .map(e => (e.className || e.tagName) + ": " + e.textContent.trim().slice(0, 60))"""
 
+OPEN_SOLUTIONS = """() => document.querySelectorAll(".solution.toggle-hidden > .admonition-title .toggle-button")
+    .forEach(button => button.click())"""
+NOTHING_MOVES = "() => document.getAnimations().every(a => a.playState !== 'running')"
 PAGE_IS_WIDER = "() => document.documentElement.scrollWidth - window.innerWidth"
 
 UNCUED = r"""() => [...document.querySelectorAll("main table, main div.math, main mjx-container[display=true]")]
@@ -45,6 +48,14 @@ UNCUED = r"""() => [...document.querySelectorAll("main table, main div.math, mai
     .map(e => e.closest(".ddg-scroll") || e)
     .filter(e => e.scrollWidth > e.clientWidth + 1 && !(e.classList.contains("ddg-scroll") && e.classList.contains("ddg-overflows")))
     .map(e => e.tagName + ": " + e.textContent.trim().slice(0, 60))"""
+
+CUT_INLINE = r"""() => [...document.querySelectorAll('main mjx-container:not([display="true"])')]
+    .filter(m => m.getClientRects().length).filter(m => {
+        let block = m.parentElement;
+        while (block && getComputedStyle(block).display.startsWith("inline")) block = block.parentElement;
+        const style = getComputedStyle(block);
+        return m.getBoundingClientRect().right > block.getBoundingClientRect().right - parseFloat(style.paddingRight) + 1;
+    }).map(m => (m.getAttribute("aria-label") || m.textContent).slice(0, 60))"""
 
 SHRUNK = r"""() => [...document.querySelectorAll("main .cell_output img")]
     .filter(img => img.naturalWidth > 0 && img.getBoundingClientRect().width < 0.9 * img.naturalWidth)
@@ -105,6 +116,8 @@ def test_page_reads_right_in_every_view(servers, browser, site, path):
                 problems += [f"MathJax errors: {n}"] if (n := page.locator("mjx-merror").count()) else []
                 problems += [f"TeX left in the text: {t[:3]}"] if (t := page.evaluate(TEX_LEFT)) else []
                 problems += [f"visible h1: {h}"] if len(h := page.evaluate(VISIBLE_H1)) != 1 else []
+                page.evaluate(OPEN_SOLUTIONS)  # a reader opens them: their code must fit too
+                page.wait_for_function(NOTHING_MOVES)  # they fade in: colours are judged after
                 boxes = page.evaluate(SIDEWAYS, "main div.highlight pre, main .cell_output .output")
                 problems += [f"boxes that scroll sideways at 1280 px: {boxes[:3]}"] if boxes else []
                 problems += [f"small figures stacked at 1280 px: {f[:3]}"] if (f := page.evaluate(STACKED)) else []
@@ -113,6 +126,7 @@ def test_page_reads_right_in_every_view(servers, browser, site, path):
                 problems += [f"the page scrolls sideways by {wider} px at 390 px"] if wider > 1 else []
                 problems += [f"wide content without a scroll box and cue: {u[:3]}"] if (u := page.evaluate(UNCUED)) else []
                 problems += [f"figures shrunk on a phone: {s[:3]}"] if (s := page.evaluate(SHRUNK)) else []
+                problems += [f"inline formulas cut off at 390 px: {c[:3]}"] if (c := page.evaluate(CUT_INLINE)) else []
             if view == "dark":
                 theme = page.evaluate("document.documentElement.dataset.theme")
                 problems += [f"the page is not in dark mode ({theme})"] if theme != "dark" else []
