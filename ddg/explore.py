@@ -553,13 +553,15 @@ class Animation(Explorer):
 
     ``frames`` is a list of :class:`Scene` objects (all with the same panels), computed by the
     caller with ``ddg``; ``label`` names the quantity that changes (``"ε"``, ``"t"``), ``values``
-    its value in each frame.
+    its value in each frame; ``start`` the frame shown first (and on paper).
     """
 
-    def __init__(self, frames, label, values, title="", interval=250):
+    def __init__(self, frames, label, values, title="", interval=250, start=0):
         self.frames, self.title, self.interval = list(frames), title, interval
+        if isinstance(start, bool) or not isinstance(start, (int, np.integer)) or not 0 <= start < len(self.frames):
+            raise ValueError(f"start must be a frame index from 0 to {len(self.frames) - 1}, got {start!r}")
         self.controls = [{"name": "frame", "label": label, "type": "frames", "options": list(range(len(self.frames))),
-                          "value": 0, "shown": [f"{v:g}" for v in values], "interval": interval}]
+                          "value": int(start), "shown": [f"{v:g}" for v in values], "interval": interval}]
 
     def scene(self, frame):
         return self.frames[int(frame)]

@@ -118,4 +118,8 @@ def test_animation_plays_its_scenes_in_order():
         frames.append(scene)
     data = packed(Animation(frames, "t", [0.0, 0.1, 0.2]))
     assert list(data["states"]) == ["0", "1", "2"] and data["controls"][0]["type"] == "frames"
+    assert data["value"] == "0" and packed(Animation(frames, "t", [0.0, 0.1, 0.2], start=1))["value"] == "1"
+    for bad in (3, -1, 1.5, True):
+        with pytest.raises(ValueError, match="start must be a frame index from 0 to 2"):
+            Animation(frames, "t", [0.0, 0.1, 0.2], start=bad)
     assert [s["t"] for s in data["states"].values()] == ["t = 0.0", "t = 0.1", "t = 0.2"]
