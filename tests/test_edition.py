@@ -54,3 +54,19 @@ def test_student_repository_and_launch_buttons(tmp_path):
     assert "rocket" not in config.split("launch:")[1].split("\n")[0]  # the intro promises no launch button
     for name in ("ddg/checks.py", "pyproject.toml", "requirements.txt", "README.md", "_vendor", "book/_assets"):
         assert (out / name).exists(), name
+
+
+def test_changed_notebooks_are_kept_unless_forced(tmp_path):
+    """The rules behind `make student` and `make clean` (the journey test_student_work runs them with make)."""
+    out = edition.write_edition(ROOT, tmp_path / "student")
+    edition.write_edition(ROOT, out)  # an unchanged edition is rewritten freely
+    edition.main(["--check-unchanged", str(out / "book")])  # ... and may be deleted
+    answer = out / "book" / "03_winding_number.ipynb"
+    answer.write_text(answer.read_text().replace("NotImplementedError", "my_answer", 1))
+    for doing in (lambda: edition.write_edition(ROOT, out), lambda: edition.main(["--check-unchanged", str(out / "book")])):
+        with pytest.raises(SystemExit, match="03_winding_number.ipynb"):
+            doing()
+        assert "my_answer" in answer.read_text()
+    edition.main(["--check-unchanged", str(out / "book"), "--force"])  # make clean FORCE=1 may delete it
+    edition.write_edition(ROOT, out, force=True)  # make student FORCE=1 overwrites it
+    assert "my_answer" not in answer.read_text() and not edition.changed_notebooks(out / "book")
