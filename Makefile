@@ -66,15 +66,15 @@ book-strict: $(ENV) $(VENDOR)
 	$(JB) build . --all -W -n --keep-going && echo "$$inputs" > _build/.inputs && echo "$$assets" > _build/.assets
 
 # First a browser (found or installed, or one line saying what to install), then the unit tests
-# and every notebook (nbval), the strict build, the student edition, and what runs on the built
+# and every notebook (nbval), the strict build and the student edition (side by side: each runs
+# its notebooks one at a time), the PDFs, and what runs on the built
 # sites and on the repository as a user would: tests/browser (Chromium, network cut) and
 # tests/journeys.
 test: $(ENV) $(VENDOR)
 	@$(PY) tools/browser.py >/dev/null
 	$(PY) -m pytest -n 2 --dist loadscope --nbval-lax --nbval-current-env tests book \
 		--ignore=tests/browser --ignore=tests/journeys
-	$(MAKE) book-strict
-	$(MAKE) student
+	$(MAKE) -j2 book-strict student
 	$(MAKE) pdf
 	rm -rf _build/screenshots
 	$(PY) -m pytest -n 2 --dist worksteal --durations=12 tests/browser tests/journeys
@@ -95,12 +95,15 @@ student: $(ENV) $(VENDOR)
 	@echo "The student site is at $(CURDIR)/_build/student/html/index.html"
 
 # The book (and the student edition, when it is built) as PDF: _build/pdf/book.pdf, one PDF per
-# chapter, and the same for students in _build/pdf/student/. Printed by Chromium (tools/pdf.py).
+# chapter, and the same for students in _build/pdf/student/. Printed by Chromium (tools/pdf.py),
+# both editions at once.
 pdf: $(ENV)
 	@[ -f _build/html/index.html ] || $(MAKE) book
 	@$(PY) tools/browser.py >/dev/null
-	$(PY) tools/pdf.py _build/html _build/pdf
-	@if [ -f _build/student/html/index.html ]; then $(PY) tools/pdf.py _build/student/html _build/pdf/student; fi
+	@student=; if [ -f _build/student/html/index.html ]; then \
+		$(PY) tools/pdf.py _build/student/html _build/pdf/student & student=$$!; fi; \
+	$(PY) tools/pdf.py _build/html _build/pdf; book=$$?; \
+	if [ -n "$$student" ]; then wait $$student || exit 1; fi; exit $$book
 
 bench: $(ENV)
 	$(PY) tests/benchmark.py
