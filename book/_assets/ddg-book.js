@@ -13,7 +13,8 @@ document.addEventListener("DOMContentLoaded", function () {
   document.querySelectorAll(".citation-list > [role='doc-biblioentry']").forEach(function (entry) {
     entry.setAttribute("role", "listitem");
   });
-  // Wide equations and tables scroll inside their own box; a shadow at the edge says so.
+  // Wide tables scroll inside their own box, display equations and code in theirs (the theme's);
+  // a shadow and a dashed line at the edge say so.
   document.querySelectorAll("main div.math, main table").forEach(function (element) {
     var box = element.closest(".ddg-scroll");
     if (!box) {
@@ -23,10 +24,24 @@ document.addEventListener("DOMContentLoaded", function () {
       box.appendChild(element);
     }
   });
+  // Punctuation stays on the line of the formula it follows ("... x^2:", not ":" starting a line),
+  // and an opening bracket on the line of the formula it opens.
+  document.querySelectorAll("main span.math").forEach(function (math) {
+    var next = math.nextSibling, before = math.previousSibling;
+    var after = next && next.nodeType === Node.TEXT_NODE ? /^[.,;:!?)\]\u2019\u201d]+/.exec(next.data) : null;
+    var open = before && before.nodeType === Node.TEXT_NODE ? /[(\[\u2018\u201c]+$/.exec(before.data) : null;
+    if (!after && !open) { return; }
+    var glue = document.createElement("span");
+    glue.className = "ddg-nowrap";
+    math.parentNode.insertBefore(glue, math);
+    if (open) { before.data = before.data.slice(0, open.index); glue.appendChild(document.createTextNode(open[0])); }
+    glue.appendChild(math);
+    if (after) { next.data = next.data.slice(after[0].length); glue.appendChild(document.createTextNode(after[0])); }
+  });
   // An inline formula wider than its column (on a phone) gets a line of its own that scrolls.
   function wideInline() {
     var formulas = document.querySelectorAll('main mjx-container:not([display="true"])');
-    formulas.forEach(function (m) { m.classList.remove("ddg-scroll", "ddg-inline-wide"); });
+    formulas.forEach(function (m) { m.classList.remove("ddg-scroll", "ddg-inline-wide", "ddg-overflows"); });
     var wide = [];
     formulas.forEach(function (m) {
       var block = m.parentElement;
@@ -40,11 +55,14 @@ document.addEventListener("DOMContentLoaded", function () {
   }
   function cue() {
     wideInline();
-    document.querySelectorAll(".ddg-scroll").forEach(function (box) {
+    document.querySelectorAll(".ddg-scroll, main div.math mjx-container, main pre").forEach(function (box) {
       box.classList.toggle("ddg-overflows", box.scrollWidth > box.clientWidth + 1);
     });
   }
   cue();
   window.addEventListener("resize", cue);
+  document.addEventListener("click", function (event) {  // an opened solution is measured again
+    if (event.target.closest(".admonition-title, .toggle-button")) { setTimeout(cue, 0); }
+  });
   if (window.MathJax && MathJax.startup && MathJax.startup.promise) { MathJax.startup.promise.then(cue); }
 });

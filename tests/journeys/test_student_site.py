@@ -8,7 +8,6 @@ the probes would find a leak. The edition must also be portable and have no wron
 
 import html
 import json
-import pathlib
 import re
 
 import pytest

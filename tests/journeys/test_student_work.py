@@ -1,13 +1,18 @@
 """Journey: a student's answers in the student edition survive `make student` and `make clean`."""
 
 import json
+import shutil
 
-from journey_helpers import copy_repository, run
+from journey_helpers import ROOT, copy_repository, run
 
 
 def test_student_answers_are_never_deleted(tmp_path):
     copy = copy_repository(tmp_path / "repo")
-    run(["make", "student"], cwd=copy)
+    built = ROOT / "_build" / "student"
+    if (built / "html" / "index.html").exists():  # the edition `make test` has just made
+        shutil.copytree(built, copy / "_build" / "student")
+    else:
+        run(["make", "student"], cwd=copy)
     notebook = copy / "_build" / "student" / "book" / "03_winding_number.ipynb"
     data = json.loads(notebook.read_text())
     starter = next(c for c in data["cells"] if "starter" in c["metadata"].get("tags", []))
