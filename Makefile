@@ -17,7 +17,7 @@ export PYTHONPATH := $(CURDIR)
 # What the pages are computed from: a change here means every notebook must run again.
 INPUTS = $$(find ddg -name '*.py' | sort | xargs cat requirements.txt _config.yml | cksum)
 # What every page carries but Sphinx does not watch: the book's stylesheet, scripts and extension.
-ASSETS = $$(find book/_assets tools/sphinx_figures.py -type f | sort | xargs cat | cksum)
+ASSETS = $$(find book/_assets tools/sphinx_*.py -type f | sort | xargs cat | cksum)
 
 .PHONY: book book-strict test lab bench student pdf dist repo clean
 
@@ -46,6 +46,12 @@ $(ENV): requirements.txt pyproject.toml
 	$(PY) -c "import matplotlib.pyplot" && \
 	echo "$$sum" > $@
 
+# The kernels that run the notebooks, without ipykernel 7's notice about unencrypted loopback TCP
+# at every start (tools/ipython_kernel_config.py; IPython reads it from .venv/etc/ipython).
+KERNEL := $(VENV)/etc/ipython/ipython_kernel_config.py
+$(KERNEL): tools/ipython_kernel_config.py $(ENV)
+	@mkdir -p $(@D) && cp tools/ipython_kernel_config.py $@
+
 # MathJax and the widgets embedder, served by the book itself (offline): tools/vendor.py.
 $(VENDOR): $(ENV) tools/vendor.py
 	$(PY) tools/vendor.py $(VENV)/vendor
@@ -54,21 +60,21 @@ $(VENDOR): $(ENV) tools/vendor.py
 # code cells, so when ddg/, the pins or the configuration changed since the last build, the
 # cache and Sphinx's state are dropped: every notebook runs again and every page is rebuilt.
 # When only the book's assets changed, every page is written again from the cached outputs.
-book: $(ENV) $(VENDOR)
+book: $(ENV) $(VENDOR) $(KERNEL)
 	@$(PY) tools/repo.py --from-git
 	@inputs="$(INPUTS)"; assets="$(ASSETS)"; \
 	if [ "$$(cat _build/.inputs 2>/dev/null)" != "$$inputs" ]; then \
 		[ -d _build/.doctrees ] && echo "ddg/, the pins or _config.yml changed: every notebook runs again"; \
 		rm -rf _build/.jupyter_cache _build/.doctrees _build/html; \
 	elif [ "$$(cat _build/.assets 2>/dev/null)" != "$$assets" ]; then \
-		[ -d _build/.doctrees ] && echo "book/_assets or tools/sphinx_figures.py changed: every page is written again"; \
+		[ -d _build/.doctrees ] && echo "book/_assets or tools/sphinx_*.py changed: every page is written again"; \
 		rm -rf _build/.doctrees _build/html; fi; \
 	$(JB) build . && mkdir -p _build && echo "$$inputs" > _build/.inputs && echo "$$assets" > _build/.assets
 	@echo "The book is at $(CURDIR)/_build/html/index.html"
 
 # The build `make test` gates on: re-reads every page and re-executes every notebook, whatever was
 # built before; any warning, stray stderr or failing cell fails it.
-book-strict: $(ENV) $(VENDOR)
+book-strict: $(ENV) $(VENDOR) $(KERNEL)
 	@inputs="$(INPUTS)"; assets="$(ASSETS)"; rm -rf _build/.jupyter_cache && \
 	$(JB) build . --all -W -n --keep-going && echo "$$inputs" > _build/.inputs && echo "$$assets" > _build/.assets
 
@@ -77,7 +83,7 @@ book-strict: $(ENV) $(VENDOR)
 # its notebooks one at a time), the PDFs, and what runs on the built
 # sites and on the repository as a user would: tests/browser (Chromium, network cut) and
 # tests/journeys.
-test: $(ENV) $(VENDOR)
+test: $(ENV) $(VENDOR) $(KERNEL)
 	@$(PY) tools/browser.py >/dev/null
 	$(PY) -m pytest -n 2 --dist loadscope --nbval-lax --nbval-current-env tests book \
 		--ignore=tests/browser --ignore=tests/journeys
@@ -87,14 +93,14 @@ test: $(ENV) $(VENDOR)
 	$(PY) -m pytest -n 2 --dist worksteal --durations=12 tests/journeys tests/browser
 
 # JupyterLab on the chapter notebooks; it prints the URL to open (with its token).
-lab: $(ENV)
+lab: $(ENV) $(KERNEL)
 	@echo "Starting JupyterLab on book/ (Ctrl-C stops it); open the URL printed below."
 	$(BIN)/jupyter lab --notebook-dir=book --ip=127.0.0.1 $$([ "$$(id -u)" = 0 ] && echo --allow-root)
 
 # The student edition: every solution removed, coding answers replaced by starter code, executed
 # and built like the book. _build/student/ is what a repository of student notebooks holds (set
 # STUDENT_REPO=https://github.com/owner/name for its launch buttons); _build/student/html the site.
-student: $(ENV) $(VENDOR)
+student: $(ENV) $(VENDOR) $(KERNEL)
 	$(PY) -m ddg.edition --out _build/student --vendor $(VENV)/vendor $(if $(FORCE),--force) \
 		$(if $(STUDENT_REPO),--student-repo $(STUDENT_REPO))
 	$(JB) build _build/student -W -n --keep-going

@@ -194,7 +194,8 @@ def write_edition(root, out, force=False, vendor=None, student_repo=None):
     (out / "_config.yml").write_text(config)
     shutil.copytree(pathlib.Path(vendor or root / ".venv" / "vendor"), out / "_vendor")
     shutil.copytree(root / "ddg", out / "ddg", ignore=shutil.ignore_patterns("__pycache__"))
-    for name in ("pyproject.toml", "requirements.txt", "tools/sphinx_figures.py"):  # the last: figures' alt text
+    extensions = sorted(p.relative_to(root) for p in (root / "tools").glob("sphinx_*.py"))  # the book's Sphinx extensions
+    for name in ("pyproject.toml", "requirements.txt", *extensions):
         (out / name).parent.mkdir(parents=True, exist_ok=True)
         shutil.copy(root / name, out / name)
     title = re.search(r'^title: "([^"]*)"', config, re.MULTILINE).group(1)

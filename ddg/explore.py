@@ -460,9 +460,10 @@ class InflationExplorer(Explorer):
             boundary = polygon.inflate(eps, method).vertices
             step = max(1, len(boundary) // 200)  # a drawing: about 200 points are plenty
             scene.line(0, boundary[::step], color="currentColor", width=1, closed=True, dash="4 3")
-        scene.summary = (f"{method}, ε = {eps:.2f}: formula A₀ + εL + ε²/2 ⟨k, 1⟩ = {formula:.6f}; "
+        name = {"minkowski": "Minkowski sum", "offset": "offset"}[method]
+        scene.summary = (f"{name}, ε = {eps:.2f}: formula A₀ + εL + ε²/2 ⟨k, 1⟩ = {formula:.6f}; "
                          f"measured {region.area:.6f}; difference {region.area - formula:+.2e}")
-        scene.alt = (f"The {shape} (grey) inflated by ε = {eps:.2f} with the {method} inflation: the region it covers, "
+        scene.alt = (f"The {shape} (grey) inflated by ε = {eps:.2f}, the {name}: the region it covers, "
                      f"measured by shapely (shaded), and the boundary ddg computes (dashed). The formula gives "
                      f"{formula:.4f}, the region measures {region.area:.4f}.")
         return scene

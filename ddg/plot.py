@@ -60,6 +60,11 @@ def show(fig, alt, caption=None):
     display(Image(buffer.getvalue()))
 
 
+def legend_above(ax, **options):
+    """The legend above the axes, where it covers no data (keyword arguments go to ``ax.legend``)."""
+    return ax.legend(loc="lower left", bbox_to_anchor=(0, 1.02), frameon=False, **options)
+
+
 def png_text(data):
     """The text chunks (``tEXt``) of PNG bytes, as a dict: what :func:`show` stored."""
     import struct
@@ -98,9 +103,17 @@ def plot_curve(curve, ax=None, vertices=True, **style):
 
 
 def arrows(ax, points, vectors, **style):
-    """Draw one arrow per row: from ``points[i]`` along ``vectors[i]`` (data units)."""
+    """Draw one arrow per row: from ``points[i]`` along ``vectors[i]`` (data units).
+
+    The axes' limits grow to take in the arrows' tips (matplotlib's autoscaling ignores arrows).
+    """
     style.setdefault("angles", "xy")
     style.setdefault("scale_units", "xy")
     style.setdefault("scale", 1)
     style.setdefault("width", 0.004)
-    return ax.quiver(points[:, 0], points[:, 1], vectors[:, 0], vectors[:, 1], **style)
+    points, vectors = np.asarray(points, dtype=float), np.asarray(vectors, dtype=float)
+    quiver = ax.quiver(points[:, 0], points[:, 1], vectors[:, 0], vectors[:, 1], **style)
+    if style["scale_units"] == "xy" and style["angles"] == "xy":
+        ax.update_datalim(np.vstack([points, points + vectors / style["scale"]]))
+        ax.autoscale_view()
+    return quiver

@@ -30,6 +30,7 @@ def test_make_book_shows_a_change_in_ddg_and_the_strict_build_catches_a_broken_d
     checks.write_text(source.replace(shown, "passed {self.checks} checks (rebuilt after a change to ddg)"))
     result = run(["make", "book"], cwd=copy)
     assert "every notebook runs again" in result.stdout
+    assert "WARNING" not in result.stdout, [line for line in result.stdout.splitlines() if "WARNING" in line]
     for chapter in ("01_smooth_curves", "02_discrete_curves", "07_convergence"):
         html = (copy / "_build" / "html" / "book" / f"{chapter}.html").read_text()
         assert "(rebuilt after a change to ddg)" in html, chapter
