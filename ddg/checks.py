@@ -21,6 +21,11 @@ How a check works, and why an answer cannot fool it:
 Where ``fork`` is missing (Windows) the answer runs in a thread of this process instead: the time
 limit still gives a verdict, but a runaway answer keeps running until the kernel restarts.
 
+What a check is not: a sandbox against deliberate cheating. Switching a quantity off catches the
+one-line shortcut (``return DiscreteCurve(v).turning_angles``); an answer that goes out of its
+way, by reloading ``ddg`` or by replacing this module's functions in an earlier cell, can still
+use ``ddg``'s own result, just as one that copies ``ddg``'s (public) source can.
+
 The same exercises are graded by ``python -m ddg.grade``: there the input is drawn from a secret
 seed, the answer runs inside the student's notebook, and the verdict is computed by the grader.
 """
@@ -29,6 +34,7 @@ import copy
 import io
 import json
 import os
+import re
 import select
 import signal
 import sys
@@ -60,9 +66,10 @@ class Feedback:
         return self.passed
 
     def __repr__(self):
+        name = _printable(self.name)[:60]
         if self.passed:
-            return f"✓ {self.name} passed {self.checks} checks on fresh random input"
-        return f"✗ {self.name}: {self.problem}"
+            return f"✓ {name} passed {self.checks} checks on fresh random input"
+        return f"✗ {name}: {_printable(self.problem)}"
 
     def _repr_html_(self):
         color = "#116329" if self.passed else "#a40e26"  # on a light box, in the light and the dark theme
@@ -77,6 +84,11 @@ class _Problem(Exception):
 
 class WriteItYourself(Exception):
     """Raised when an answer uses the ddg quantity its exercise asks for."""
+
+
+def _printable(text):
+    """``text`` without control characters (an answer's name or message could carry terminal codes)."""
+    return re.sub(r"[\x00-\x1f\x7f-\x9f]", " ", str(text))
 
 
 def _require(condition, message):
@@ -141,6 +153,7 @@ def _in_child(answer, calls, forbidden, limit):
     pid = os.fork()
     if pid == 0:  # the child: run, send, and leave without running any of the parent's clean-up
         try:
+            os.setpgid(0, 0)  # a group of its own: whatever it starts is stopped with it
             os.close(read)
             sys.stdout = sys.stderr = io.StringIO()  # the kernel's streams belong to the parent
             data = json.dumps(_answers(answer, calls, forbidden)).encode()
@@ -150,12 +163,15 @@ def _in_child(answer, calls, forbidden, limit):
         finally:
             os._exit(0)
     os.close(write)
+    try:
+        os.setpgid(pid, pid)
+    except OSError:  # the child got there first, or has already ended
+        pass
     chunks, deadline = [], time.monotonic() + limit
     try:
         while True:
             left = deadline - time.monotonic()
             if left <= 0 or not select.select([read], [], [], left)[0]:
-                os.kill(pid, signal.SIGKILL)
                 return {"timeout": limit}
             chunk = os.read(read, 1 << 16)
             if not chunk:
@@ -163,10 +179,36 @@ def _in_child(answer, calls, forbidden, limit):
             chunks.append(chunk)
     finally:
         os.close(read)
+        for kill in (lambda: os.killpg(pid, signal.SIGKILL), lambda: os.kill(pid, signal.SIGKILL)):
+            try:
+                kill()
+            except OSError:  # ended already
+                pass
         os.waitpid(pid, 0)
     if not chunks:
         return {"exited": True}
-    return json.loads(b"".join(chunks))
+    return _readable(b"".join(chunks))
+
+
+_UNREADABLE = {"error": "the process the answer ran in sent back something that is not its results"}
+
+
+def _readable(data):
+    """The child's results as :func:`_answers` makes them, or an error if they are anything else."""
+    try:
+        results = json.loads(data)
+    except ValueError:
+        return _UNREADABLE
+    return results if _well_formed(results) else _UNREADABLE
+
+
+def _well_formed(results):
+    """Whether ``results`` is a list of ``{"value": numbers}``, ``{"error": text}`` or ``{"missing": True}``."""
+    return isinstance(results, list) and all(
+        isinstance(result, dict) and len(result) == 1 and (
+            isinstance(result.get("value"), (int, float, list)) or isinstance(result.get("error"), str)
+            or result.get("missing") is True)
+        for result in results)
 
 
 def _in_thread(answer, calls, forbidden, limit):
@@ -230,7 +272,10 @@ class _Results:
         if "missing" in result:
             raise NotImplementedError
         _require("error" not in result, lambda: f"{what}: {result['error']}")
-        value = np.asarray(result["value"], dtype=float)
+        try:
+            value = np.asarray(result["value"], dtype=float)
+        except (TypeError, ValueError):  # ragged lists
+            raise _Problem(f"{what}: it returned nested lists of different lengths, not an array") from None
         _require(value.shape == tuple(shape), f"{what} should have shape {tuple(shape)}, got {value.shape}")
         _require(np.isfinite(value).all(), f"{what} contains NaN or infinity")
         return value
@@ -243,12 +288,15 @@ def judge(exercise, calls, raw, context):
             return Feedback(exercise.name, f"it did not return within {raw['timeout']:g} s (an endless loop?)")
         if "exited" in raw:
             return Feedback(exercise.name, "it ended the process it ran in (os._exit, or a crash)")
-        return Feedback(exercise.name, raw["error"])
+        return Feedback(exercise.name, str(raw.get("error", "no results came back")))
+    if not _well_formed(raw):  # results read back from elsewhere (the grader reads them from a notebook)
+        return Feedback(exercise.name, _UNREADABLE["error"])
     results, count, description = _Results(raw, calls), 0, None
     steps = exercise.judge(calls, results, context)
     try:
-        for count, description in enumerate(steps, start=1):
-            pass
+        with np.errstate(all="ignore"):  # whatever the notebook set: the verdict's arithmetic never raises
+            for count, description in enumerate(steps, start=1):
+                pass
     except NotImplementedError:
         return Feedback(exercise.name, "not written yet: replace `raise NotImplementedError` with your code")
     except _Problem as problem:
@@ -312,12 +360,40 @@ def _close(a, b, rtol=1e-5, scale=1.0):
 # ------------------------------------------------------------------------------- chapter 1
 
 
-def _ellipse(rng):
+def _ellipse(rng, clockwise=None):
+    """A random ``ddg.smooth`` ellipse, centred at least 0.5 from the origin in x and in y."""
     from . import smooth
 
     a, b = rng.uniform(1.2, 2.5), rng.uniform(0.4, 1.0)
-    centre, clockwise = rng.normal(size=2), bool(rng.integers(2))
+    centre = rng.choice([-1.0, 1.0], 2) * rng.uniform(0.5, 1.5, 2)
+    clockwise = bool(rng.integers(2)) if clockwise is None else clockwise
     return smooth.ellipse(a, b, tuple(centre), clockwise), (a, b, centre, clockwise)
+
+
+def _bean(rng):
+    """A random non-convex smooth curve, r = 1 + c cos 2t turned and moved, with points on it
+    where it bends each way (none where it is nearly straight)."""
+    from . import smooth
+
+    c, turn, shift = rng.uniform(0.45, 0.7), rng.uniform(0, 2 * np.pi), rng.normal(size=2)
+    clockwise = bool(rng.integers(2))
+    polar = smooth.polar(lambda t: 1 + c * np.cos(2 * t), lambda t: -2 * c * np.sin(2 * t),
+                         lambda t: -4 * c * np.cos(2 * t), clockwise)
+    R = _rotation(turn)
+
+    def moved(f, offset):  # the callable f, turned by R and moved by offset
+        def g(t):
+            x, y = f(t)
+            return R[0, 0] * x + R[0, 1] * y + offset[0], R[1, 0] * x + R[1, 1] * y + offset[1]
+        return g
+
+    curve = smooth.SmoothCurve(moved(polar.gamma, shift), moved(polar.dgamma, (0, 0)),
+                               moved(polar.ddgamma, (0, 0)), name="bean")
+    t = rng.uniform(0, 2 * np.pi, 400)
+    kappa = curve.curvature(t)
+    t = t[np.abs(kappa) > 0.25]
+    bends = np.sign(curve.curvature(t))
+    return curve, np.concatenate([t[bends > 0][:4], t[bends < 0][:4]])
 
 
 @_exercise("osculating_center")
@@ -333,6 +409,7 @@ class _OsculatingCenter:
             context["circles"].append((r, c, clockwise))
         curve, _ = _ellipse(rng)
         calls.append((curve, rng.uniform(0, 2 * np.pi, 6)))
+        calls.append(_bean(rng))  # curvature of both signs
         return calls, context
 
     @staticmethod
@@ -344,17 +421,21 @@ class _OsculatingCenter:
             _require(_close(got, np.broadcast_to(c, got.shape), scale=r),
                      f"for a {where} circle of radius {r:.3f} centred at {_short(c)} you found centres such as "
                      f"{_short(got[0])}")
-        yield "an ellipse"
-        curve, t = calls[2]
-        got = results.get(2, (len(t), 2), f"the centres for {len(t)} parameters")
-        offset = got - curve.position(t)
-        kappa = curve.curvature(t)
-        radius = np.linalg.norm(offset, axis=1)
-        _require(_close(radius, 1 / np.abs(kappa)), lambda: f"on an ellipse the distance from the curve to your "
-                 f"centres is {_short(radius)}; it should be the radius of curvature 1/|kappa|")
-        along = np.einsum("ij,ij->i", offset, curve.normal(t))
-        _require(_close(np.abs(along), radius), "the centre should lie on the normal line through the point")
-        _require((along * kappa < 0).all(), "the centre is on the wrong side: it lies where the curve bends to")
+        for i, what in ((2, "an ellipse"), (3, "a non-convex curve, which bends both ways")):
+            yield what
+            curve, t = calls[i]
+            got = results.get(i, (len(t), 2), f"the centres for {len(t)} parameters")
+            offset = got - curve.position(t)
+            kappa = curve.curvature(t)
+            radius = np.linalg.norm(offset, axis=1)
+            _require(_close(radius, 1 / np.abs(kappa)), lambda: f"on {what} the distance from the curve to your "
+                     f"centres is {_short(radius)}; it should be the radius of curvature 1/|kappa|")
+            along = np.einsum("ij,ij->i", offset, curve.normal(t))
+            _require(_close(np.abs(along), radius), f"on {what}: the centre should lie on the normal line through "
+                     "the point")
+            wrong = np.flatnonzero(along * kappa >= 0)
+            _require(len(wrong) == 0, lambda: f"on {what}: at t = {t[wrong[0]]:.4f}, where kappa = "
+                     f"{kappa[wrong[0]]:+.4f}, the centre is on the wrong side: it lies where the curve bends to")
 
 
 def check_osculating_center(osculating_center, seed=None):
@@ -369,39 +450,46 @@ def check_osculating_center(osculating_center, seed=None):
 class _Staircase:
     @staticmethod
     def draw(rng):
-        curve, shape = _ellipse(rng)
-        ms = [int(rng.integers(2, 9)), 4, 16, 64, 3, 10, 50]
-        return [(curve, m) for m in ms], {"shape": shape}
+        calls, shapes = [], []
+        for clockwise, ms in ((True, [int(rng.integers(2, 9)), 4, 16, 64]), (False, [3, 10, 50])):
+            curve, shape = _ellipse(rng, clockwise)
+            calls += [(curve, m) for m in ms]
+            shapes += [shape] * len(ms)
+        return calls, {"shapes": shapes}
 
     @staticmethod
     def judge(calls, results, context):
-        a, b, centre, _ = context["shape"]
-        curve = calls[0][0]
         stairs = {}
         yield "the vertices"
-        for i, (_, m) in enumerate(calls):
+        for i, (curve, m) in enumerate(calls):
+            a, b, centre, clockwise = context["shapes"][i]
             v = results.get(i, (8 * m, 2), f"staircase(curve, {m}): 4m points and 4m corners")
             points = curve.position(2 * np.pi * np.arange(4 * m) / (4 * m))
             _require(_close(v[::2], points, scale=a), f"staircase(curve, {m}): v[2k] should be the k-th point "
                      "curve.position(2 pi k / (4m)), and v[2k + 1] the corner after it")
             try:
-                stairs[m] = DiscreteCurve(v)
+                stairs[i] = DiscreteCurve(v)
             except ValueError as problem:
                 raise _Problem(f"staircase(curve, {m}) is not a closed discrete curve: {problem}")
+        where = {True: "a clockwise ellipse", False: "a counter-clockwise ellipse"}
         yield "steps"
-        for m, c in stairs.items():
-            e = c.edges
+        for i, c in stairs.items():
+            (a, b, _, clockwise), m, e = context["shapes"][i], calls[i][1], c.edges
             flat = np.minimum(np.abs(e[:, 0]), np.abs(e[:, 1])) <= 1e-6 * (a + b)
-            _require(flat.all(), lambda: f"edge {np.flatnonzero(~flat)[0]} of staircase(curve, {m}) is neither "
-                     "horizontal nor vertical")
+            _require(flat.all(), lambda: f"edge {np.flatnonzero(~flat)[0]} of staircase(curve, {m}) around "
+                     f"{where[clockwise]} is neither horizontal nor vertical")
         yield "corners outside"
-        for m, c in stairs.items():
+        for i, c in stairs.items():
+            (a, b, centre, clockwise), m = context["shapes"][i], calls[i][1]
             x, y = ((c.vertices[1::2] - centre) / [a, b]).T
-            _require((np.hypot(x, y) >= 1 - 1e-6).all(), f"staircase(curve, {m}): a corner lies inside the ellipse")
+            _require((np.hypot(x, y) >= 1 - 1e-6).all(), f"staircase(curve, {m}) around {where[clockwise]}: a "
+                     "corner lies inside the ellipse")
         yield "length"
-        for m, c in stairs.items():
-            _require(abs(c.length - 4 * (a + b)) <= 1e-5 * (a + b), f"staircase(curve, {m}) around an ellipse with "
-                     f"semi-axes {a:.3f}, {b:.3f} has length {c.length:.6f}; what does every such staircase measure?")
+        for i, c in stairs.items():
+            (a, b, _, clockwise), m = context["shapes"][i], calls[i][1]
+            _require(abs(c.length - 4 * (a + b)) <= 1e-5 * (a + b), f"staircase(curve, {m}) around "
+                     f"{where[clockwise]} with semi-axes {a:.3f}, {b:.3f} has length {c.length:.6f}; what does "
+                     "every such staircase measure?")
 
 
 def check_staircase(staircase, seed=None):
@@ -434,7 +522,8 @@ class _VertexNormals:
         while True:  # edges of different lengths, so that the four methods do not coincide
             other = _random_polygon(rng, max_turn=np.pi - 0.3)
             ratio = other.edge_lengths / np.roll(other.edge_lengths, 1)
-            if np.abs(np.log(ratio)).max() > 0.7 and other.turning_angles.min() < -0.2:  # and a reflex vertex
+            psi = other.turning_angles
+            if np.abs(np.log(ratio)).max() > 0.7 and psi.min() < -0.2 and psi.max() > 0.2:  # turns both ways
                 break
         return [(c, method) for c in (convex, other) for method in _METHODS], {}
 
@@ -453,19 +542,21 @@ class _VertexNormals:
                      "convention)")
         N = other.normals
         bisector = np.roll(N, 1, axis=0) + N  # its direction: the side of the bisector
-        for method, quantity, named in (("length-gradient", lambda c: c.length, "length"),
-                                        ("bisector", lambda c: c.length, "length"),
-                                        ("area-gradient", lambda c: c.signed_area, "signed area"),
-                                        ("length-weighted", lambda c: c.signed_area, "signed area")):
+        # measured independently: the length-weighted average of the edge normals points along the
+        # gradient of the signed area, the bisector along the line of the gradient of length
+        for method, quantity, named in (("length-gradient", lambda c: c.length, "the gradient of length"),
+                                        ("bisector", lambda c: c.length, "the bisector of the two edge normals"),
+                                        ("area-gradient", lambda c: c.signed_area, "the gradient of the signed area"),
+                                        ("length-weighted", lambda c: c.signed_area,
+                                         "the edge normals' average weighted by the edges' lengths")):
             yield f"{method!r} on a polygon with unequal edges"
             n = got[id(other), method]
             for i in range(len(other)):
                 grad = _gradient_by_differences(other, quantity, i)
                 sine = (grad[0] * n[i, 1] - grad[1] * n[i, 0]) / np.linalg.norm(grad)
                 side = n[i] @ (bisector[i] if method == "bisector" else grad)  # the bisector points outward
-                _require(abs(sine) < 1e-5 and side > 0, f"{method!r}: at vertex {i} your normal {_short(n[i])} "
-                         f"does not point along the {'line of the ' if method == 'bisector' else ''}gradient of "
-                         f"the {named} that finite differences measure there")
+                _require(abs(sine) < 1e-5 and side > 0, f"{method!r}: on a polygon that turns both ways, at vertex "
+                         f"{i} your normal {_short(n[i])} does not point along {named}")
 
 
 def check_vertex_normals(vertex_normals, seed=None):
@@ -489,6 +580,21 @@ def _reversal(rng, sign):
     return v if sign > 0 else v * [-1.0, 1.0]  # mirrored: the zero cross product has the other sign
 
 
+def _slanted_reversal(rng):
+    """A polygon that turns straight back at vertex 1 along a slanted line, chosen so that the
+    cosine of the turn, computed as a.b / (|a| |b|) in the usual ways, rounds to just below -1
+    (so that arccos gives NaN); about one direction in seven does."""
+    while True:
+        d = rng.normal(size=2)
+        a, b = 2 * d, -d  # exactly opposite
+        rows = np.array([a]), np.array([b])
+        cosines = (np.dot(a, b) / (np.linalg.norm(a) * np.linalg.norm(b)),
+                   (a[0] * b[0] + a[1] * b[1]) / (np.hypot(*a) * np.hypot(*b)),
+                   ((rows[0] * rows[1]).sum(axis=1) / np.prod([np.linalg.norm(r, axis=1) for r in rows], axis=0))[0])
+        if max(cosines) < -1:
+            return np.array([[0.0, 0.0], a, a + b, a + b + 0.7 * np.array([-d[1], d[0]])])
+
+
 @_exercise("turning_angles", forbidden=("turning_angles", "_tan_half_psi", "curvature", "_tangent_curvature",
                                         "total_curvature", "turning_number"))
 class _TurningAngles:
@@ -497,7 +603,7 @@ class _TurningAngles:
         n = int(rng.integers(3, 20))
         polygons = [np.array([[0.0, 0.0], [0.0, 1.0], [1.0, 1.0], [1.0, 0.0]]),
                     regular_polygon(n, rng.uniform(0.5, 2)).vertices, regular_polygon(n, 1.0, False).vertices,
-                    _reversal(rng, +1), _reversal(rng, -1)]
+                    _reversal(rng, +1), _reversal(rng, -1), _slanted_reversal(rng)]
         for _ in range(12):
             polygons.append(_random_polygon(rng).vertices)
         moved = polygons[-1] @ _rotation(rng.uniform(0, 6)).T + rng.normal(size=2)
@@ -522,8 +628,12 @@ class _TurningAngles:
         for i in (3, 4):
             _require(abs(psi[i][1] - np.pi) < 1e-6, f"where a polygon turns straight back the angle is pi, the "
                      f"end of the range (-pi, pi] that belongs to it; you found {psi[i][1]:.6f}")
+        # along a slanted line, where rounding may put a computed cosine just below -1 (and a
+        # difference of headings just above -pi): a turn of size pi
+        _require(abs(abs(psi[5][1]) - np.pi) < 1e-6, f"a polygon that turns straight back along a slanted line "
+                 f"turns by pi there; you found {psi[5][1]:.6f}")
         yield "random polygons"
-        for i in range(5, len(calls)):
+        for i in range(6, len(calls)):
             v, got = calls[i][0], psi[i]
             _require((got > -np.pi).all() and (got <= np.pi + 1e-12).all(), f"angles should lie in (-pi, pi], "
                      f"yours include {got.min():.4f}, {got.max():.4f}")
@@ -707,7 +817,8 @@ class _CircleCurvature:
         while True:  # unequal edges, so that neighbouring formulas differ
             other = _random_polygon(rng, max_turn=np.pi - 0.2)
             ratio = other.edge_lengths / np.roll(other.edge_lengths, 1)
-            if np.abs(np.log(ratio)).max() > 0.7 and np.abs(other.turning_angles).min() > 0.05:
+            psi = other.turning_angles
+            if np.abs(np.log(ratio)).max() > 0.7 and np.abs(psi).min() > 0.05 and psi.min() < 0 < psi.max():
                 break
         alpha = rng.uniform(0.2, 5)
         v = other.vertices
@@ -777,8 +888,11 @@ def _zigzag_growth(b):
 class _ZigzagExponent:
     @staticmethod
     def draw(rng):
-        # b > 1, and away from b = 2 and b = 4, where two kinds of error cross over slowly
-        bs = [rng.uniform(1.2, 1.8), rng.uniform(2.2, 3.0), rng.uniform(4.8, 6), rng.uniform(1.2, 3.0)]
+        # b > 1, on each side of b = 2 and b = 4, but not near them: there two kinds of error cross
+        # over slowly, and the exponent measured on n <= 4096 lies between the two (it is within
+        # 0.04 of the limit for b <= 3.2 and b >= 4.2, off by 0.11 at b = 3.4)
+        bs = [rng.uniform(1.2, 1.8), rng.uniform(2.2, 3.0), rng.uniform(3.0, 3.2), rng.uniform(4.2, 4.8),
+              rng.uniform(4.8, 6), rng.uniform(1.2, 3.2)]
         return [(float(b),) for b in bs], {}
 
     @staticmethod
@@ -787,7 +901,7 @@ class _ZigzagExponent:
         got = [float(results.get(i, (), f"zigzag_exponent({b:.3f})")) for i, (b,) in enumerate(calls)]
         yield "the measured growth"
         for (b,), p in zip(calls, got):
-            _require(abs(p - _zigzag_growth(b)) < 0.15, f"for b = {b:.3f}, max_i |k_i - 1| does not grow like "
+            _require(abs(p - _zigzag_growth(b)) < 0.08, f"for b = {b:.3f}, max_i |k_i - 1| does not grow like "
                      f"n^{p:.3f} on zigzags with n = {', '.join(map(str, _ZIGZAG_N))}")
 
 

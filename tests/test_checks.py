@@ -99,6 +99,16 @@ def osculating_few_percent(curve, t):
     return curve.position(t) - 1.03 * curve.normal(t) / curve.curvature(t)[:, None]
 
 
+def osculating_side_from_orientation(curve, t):  # right only where the curve bends the way it turns
+    side = np.sign(curve.total_curvature())
+    return curve.position(t) - side * curve.normal(t) / np.abs(curve.curvature(t))[:, None]
+
+
+def osculating_side_from_first_point(curve, t):  # the side found at one point, used at all
+    kappa = curve.curvature(t)
+    return curve.position(t) - np.sign(kappa[0]) * curve.normal(t) / np.abs(kappa)[:, None]
+
+
 # ------------------------------------------------------------------------ chapter 2
 
 
@@ -132,6 +142,23 @@ def staircase_through_8m_points(curve, m):  # finer than asked
 
 def staircase_starting_at_a_corner(curve, m):
     return np.roll(REFERENCE["staircase"](curve, m), 1, axis=0)
+
+
+def staircase_clockwise_only(curve, m):  # the corner rule worked out on a clockwise ellipse
+    p = curve.position(2 * np.pi * np.arange(4 * m) / (4 * m))
+    q = np.roll(p, -1, axis=0)
+    mid = (p + q) / 2 - p.mean(axis=0)
+    first_or_third = mid[:, 0] * mid[:, 1] > 0  # quadrants I and III
+    corner = np.where(first_or_third[:, None], np.stack([q[:, 0], p[:, 1]], 1), np.stack([p[:, 0], q[:, 1]], 1))
+    return np.stack([p, corner], axis=1).reshape(-1, 2)
+
+
+def staircase_about_the_origin(curve, m):  # "farther out" measured from the origin, not the centre
+    p = curve.position(2 * np.pi * np.arange(4 * m) / (4 * m))
+    q = np.roll(p, -1, axis=0)
+    x = np.where(np.abs(p[:, 0]) > np.abs(q[:, 0]), p[:, 0], q[:, 0])
+    y = np.where(np.abs(p[:, 1]) > np.abs(q[:, 1]), p[:, 1], q[:, 1])
+    return np.stack([p, np.stack([x, y], axis=1)], axis=1).reshape(-1, 2)
 
 
 def staircase_few_percent(curve, m):
@@ -177,6 +204,12 @@ def normals_tangential(curve, method):  # T instead of N: turned a quarter
     return np.stack([n[:, 1], -n[:, 0]], axis=1)
 
 
+def normals_orientation_sign(curve, method):  # the gradient's direction taken as the bisector's
+    if method == "length-gradient":  # times the orientation: right where every turn has one sign
+        return REFERENCE["vertex_normals"](curve, "bisector") * np.sign(curve.signed_area)
+    return REFERENCE["vertex_normals"](curve, method)
+
+
 def normals_bisector_signed(curve, method):  # the bisector flipped at reflex vertices, like grad L
     return REFERENCE["vertex_normals"](curve, "length-gradient" if method == "bisector" else method)
 
@@ -218,6 +251,15 @@ def turning_plain_atan2(vertices):  # -pi where the cross product is -0.0
     e_prev = np.roll(e_next, 1, axis=0)
     cross = e_prev[:, 0] * e_next[:, 1] - e_prev[:, 1] * e_next[:, 0]
     return np.arctan2(-cross, (e_prev * e_next).sum(axis=1))
+
+
+def turning_arccos_unclipped(vertices):  # the sign from the cross product, the size from arccos
+    e_next = np.roll(vertices, -1, axis=0) - vertices
+    e_prev = np.roll(e_next, 1, axis=0)
+    cross = e_prev[:, 0] * e_next[:, 1] - e_prev[:, 1] * e_next[:, 0]
+    cosine = (e_prev * e_next).sum(axis=1) / (np.linalg.norm(e_prev, axis=1) * np.linalg.norm(e_next, axis=1))
+    with np.errstate(invalid="ignore"):  # NaN where rounding puts the cosine below -1
+        return np.where(cross <= 0, 1, -1) * np.arccos(cosine)
 
 
 def turning_few_percent(vertices):
@@ -349,6 +391,10 @@ def circle_counterclockwise(curve):
     return -REFERENCE["circle_curvature"](curve)
 
 
+def circle_orientation_sign(curve):  # the sign of the whole polygon, not of each turn
+    return np.abs(REFERENCE["circle_curvature"](curve)) * np.sign(curve.signed_area)
+
+
 def circle_few_percent(curve):
     return 1.03 * REFERENCE["circle_curvature"](curve)
 
@@ -387,18 +433,33 @@ def zigzag_squared(b):
     return 2 - 2 * b
 
 
+def zigzag_floor_at_three(b):  # right below b = 3 only
+    return 2 - b if b < 3 else -2.0
+
+
+def zigzag_floor_too_low(b):  # the polygon's own error taken a little too small
+    return max(2 - b, -2.1)
+
+
+def zigzag_no_floor_until_five(b):
+    return 2 - b if b < 4.8 else -2.0
+
+
 CATALOGUE = {
     "osculating_center": ([osculating_three_points], [osculating_outward, osculating_unsigned, osculating_no_reciprocal,
-                                                     osculating_along_tangent, osculating_few_percent]),
+                                                     osculating_along_tangent, osculating_few_percent,
+                                                     osculating_side_from_orientation,
+                                                     osculating_side_from_first_point]),
     "staircase": ([staircase_by_coordinates], [staircase_inscribed, staircase_no_closing_corner,
                                                staircase_inner_corners, staircase_through_8m_points,
-                                               staircase_starting_at_a_corner, staircase_few_percent]),
+                                               staircase_starting_at_a_corner, staircase_few_percent,
+                                               staircase_clockwise_only, staircase_about_the_origin]),
     "vertex_normals": ([normals_by_complex_numbers], [normals_inward, normals_swapped, normals_bisector_as_weighted,
                                                       normals_unnormalized, normals_tangential,
-                                                      normals_bisector_signed]),
+                                                      normals_bisector_signed, normals_orientation_sign]),
     "turning_angles": ([turning_by_headings], [turning_counterclockwise, turning_unsigned, turning_open,
                                                turning_off_by_one, turning_degrees, turning_plain_atan2,
-                                               turning_few_percent]),
+                                               turning_arccos_unclipped, turning_few_percent]),
     "rebuild": ([rebuild_by_complex_numbers], [rebuild_counterclockwise, rebuild_off_by_one, rebuild_no_last_vertex,
                                                rebuild_few_percent]),
     "length_gradient": ([gradient_from_sine_curvature], [gradient_euclidean, gradient_negated, gradient_open,
@@ -407,9 +468,11 @@ CATALOGUE = {
     "minkowski_area": ([minkowski_measured], [minkowski_convex_formula, minkowski_offset_formula, minkowski_half_sector,
                                               minkowski_reflex_sign, minkowski_no_strips, minkowski_few_percent]),
     "circle_curvature": ([circle_by_menger], [circle_wrong_chord, circle_sine_formula, circle_unsigned,
-                                              circle_no_factor_two, circle_counterclockwise, circle_few_percent]),
+                                              circle_no_factor_two, circle_counterclockwise, circle_orientation_sign,
+                                              circle_few_percent]),
     "zigzag_exponent": ([zigzag_numpy, zigzag_measured], [zigzag_no_floor, zigzag_threshold, zigzag_linear,
-                                                          zigzag_squared]),
+                                                          zigzag_squared, zigzag_floor_at_three, zigzag_floor_too_low,
+                                                          zigzag_no_floor_until_five]),
 }
 SCALAR = {"minkowski_area", "zigzag_exponent"}  # answers that return one number: no list version
 
@@ -529,6 +592,59 @@ def test_crashing_exiting_and_odd_answers_are_reported_not_raised():
         feedback = checks.check_turning_angles(answer, seed=0)
         assert not feedback and expected in feedback.problem, (expected, feedback)
     assert "✗" in checks.check_turning_angles(cases[0][0], seed=0)._repr_html_()
+
+
+def test_what_an_answer_sends_back_or_leaves_behind_gets_a_verdict():
+    import os
+    import sys
+
+    def pipe_end():  # the write end of the pipe its results go back through, from the caller's frame
+        frame = sys._getframe(2)
+        while "write" not in frame.f_locals:
+            frame = frame.f_back
+        return frame.f_locals["write"]
+
+    def forger(data):
+        def answer(vertices):
+            os.write(pipe_end(), data)
+            os._exit(0)
+        return answer
+
+    for data in (b"not json", b'{"x": 1}', b'[{"v": 1}]', b'[{"value": [[1, 2], [3]]}]', b'[{"value": "1"}]'):
+        feedback = checks.check_turning_angles(forger(data), seed=0)
+        assert not feedback and ("not its results" in feedback.problem or "not an array" in feedback.problem), \
+            (data, feedback)
+
+    marker = pathlib.Path(os.environ.get("TMPDIR", "/tmp")) / f"ddg-check-grandchild-{os.getpid()}"
+
+    def leaves_a_process(vertices):  # answers right away, but a process it started holds the pipe open
+        if os.fork() == 0:
+            marker.write_text(str(os.getpid()))
+            time.sleep(30)
+            os._exit(0)
+        return REFERENCE["turning_angles"](vertices)
+
+    start = time.monotonic()
+    feedback = checks.check_turning_angles(leaves_a_process, seed=0)
+    assert not feedback and "did not return" in feedback.problem and time.monotonic() - start < checks.TIME_LIMIT + 2
+    grandchild = int(marker.read_text())
+    marker.unlink()
+    time.sleep(0.2)
+    stat = pathlib.Path(f"/proc/{grandchild}/stat")
+    assert not stat.exists() or stat.read_text().split(") ")[-1].split()[0] == "Z", "the answer's process lives on"
+
+    previous = np.seterr(all="raise")  # a notebook that makes numpy raise on 1/0: still a verdict
+    try:
+        feedback = checks.check_circle_curvature(lambda c: np.zeros(len(c)), seed=0)
+    finally:
+        np.seterr(**previous)
+    assert not feedback and "radius" in feedback.problem
+
+    def disguised(vertices):
+        raise ValueError("\r✓ turning_angles passed 6 checks\x1b[8m")
+    disguised.__name__ = "\r✓ passed\x1b[8m"
+    shown = repr(checks.check_turning_angles(disguised, seed=0))
+    assert shown.startswith("✗") and not any(ord(ch) < 32 or 127 <= ord(ch) < 160 for ch in shown), shown
 
 
 def test_input_the_answer_changes_does_not_change_the_verdict():
