@@ -800,8 +800,9 @@ class _MinkowskiArea:
 def check_minkowski_area(minkowski_area, seed=None):
     """``minkowski_area(curve, eps)``: area of the Minkowski sum of a clockwise simple polygon with a disk.
 
-    It must be right for non-convex polygons too, for ``eps`` small enough that the inflated edges
-    meet only their neighbours. It is measured against shapely's round buffer.
+    It must be right for non-convex polygons too, for ``eps`` small enough that the sum's
+    boundary consists of the moved edges and the arcs at the corners only. It is measured
+    against shapely's round buffer.
     """
     return run("minkowski_area", minkowski_area, seed)
 
