@@ -284,11 +284,11 @@ class _Results:
 def judge(exercise, calls, raw, context):
     """A :class:`Feedback` for the raw results of ``exercise`` on ``calls`` (see :func:`evaluate`)."""
     if isinstance(raw, dict):
-        if "timeout" in raw:
+        if isinstance(raw.get("timeout"), (int, float)):
             return Feedback(exercise.name, f"it did not return within {raw['timeout']:g} s (an endless loop?)")
-        if "exited" in raw:
+        if raw.get("exited") is True:
             return Feedback(exercise.name, "it ended the process it ran in (os._exit, or a crash)")
-        return Feedback(exercise.name, str(raw.get("error", "no results came back")))
+        return Feedback(exercise.name, str(raw.get("error", _UNREADABLE["error"])))
     if not _well_formed(raw):  # results read back from elsewhere (the grader reads them from a notebook)
         return Feedback(exercise.name, _UNREADABLE["error"])
     results, count, description = _Results(raw, calls), 0, None

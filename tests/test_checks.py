@@ -610,7 +610,8 @@ def test_what_an_answer_sends_back_or_leaves_behind_gets_a_verdict():
             os._exit(0)
         return answer
 
-    for data in (b"not json", b'{"x": 1}', b'[{"v": 1}]', b'[{"value": [[1, 2], [3]]}]', b'[{"value": "1"}]'):
+    for data in (b"not json", b'{"x": 1}', b'{"timeout": "soon"}', b'[{"v": 1}]', b'[{"value": [[1, 2], [3]]}]',
+                 b'[{"value": "1"}]'):
         feedback = checks.check_turning_angles(forger(data), seed=0)
         assert not feedback and ("not its results" in feedback.problem or "not an array" in feedback.problem), \
             (data, feedback)
