@@ -10,6 +10,8 @@ import http.server
 import pathlib
 import re
 import threading
+import urllib.parse
+import urllib.request
 
 import pytest
 
@@ -21,6 +23,9 @@ SITES = {"book": ROOT / "_build" / "html", "student": ROOT / "_build" / "student
 SHOTS = ROOT / "_build" / "screenshots"
 VIEWS = {"desktop": {"width": 1280, "dark": False}, "phone": {"width": 390, "dark": False},
          "dark": {"width": 1280, "dark": True}}
+
+# <meta http-equiv="Refresh" content="0; url=book/intro.html" />: what Sphinx writes as index.html
+REFRESH = re.compile(r'<meta\s+http-equiv="refresh"\s+content="\d+;\s*url=([^"]+)"', re.I)
 
 # Console errors this stack is known to print, harmless to a reader (GUIDE §5):
 ALLOWED_CONSOLE = [
@@ -76,7 +81,12 @@ class Visit:
         self.page.on("pageerror", lambda e: self.console.append(str(e)))
         self.page.on("response", lambda r: r.status >= 400 and not self.ignoring and self.failed.append(f"{r.status} {r.url}"))
         self.page.on("requestfailed", lambda r: not self.ignoring and self.failed.append(f"failed {r.url}: {r.failure}"))
-        self.page.goto(base + path, wait_until="load")
+        url = base + path
+        with urllib.request.urlopen(url) as response:  # loopback only
+            redirect = REFRESH.search(response.read().decode("utf-8", "replace"))
+        self.page.goto(url, wait_until="load")
+        if redirect:  # a redirect page (the site's index.html): the reader lands on its target
+            self.page.wait_for_url(urllib.parse.urljoin(url, redirect.group(1)), wait_until="load")
         if self.page.locator(".math").count():  # a page with math: wait until MathJax has typeset it
             self.page.wait_for_selector("mjx-container", state="attached", timeout=20000)
             self.page.evaluate("() => window.MathJax?.startup?.promise?.then(() => true)")  # typesetting done
