@@ -87,7 +87,7 @@ test: $(ENV) $(VENDOR) $(KERNEL)
 	@$(PY) tools/browser.py >/dev/null
 	$(PY) -m pytest -n 2 --dist loadscope --nbval-lax --nbval-current-env tests book \
 		--ignore=tests/browser --ignore=tests/journeys
-	$(MAKE) -j2 book-strict student
+	$(MAKE) -j2 book-strict student FRESH=1
 	$(MAKE) pdf
 	rm -rf _build/screenshots
 	$(PY) -m pytest -n 2 --dist worksteal --durations=12 tests/journeys tests/browser
@@ -100,9 +100,21 @@ lab: $(ENV) $(KERNEL)
 # The student edition: every solution removed, coding answers replaced by starter code, executed
 # and built like the book. _build/student/ is what a repository of student notebooks holds (set
 # STUDENT_REPO=https://github.com/owner/name for its launch buttons); _build/student/html the site.
+# The outputs of the last edition's notebooks are kept while ddg/, the pins and _config.yml are
+# unchanged since it was built, so only notebooks whose code changed run again; FRESH=1 runs them
+# all (`make test` does).
 student: $(ENV) $(VENDOR) $(KERNEL)
+	@inputs="$(INPUTS)"; cache=_build/student/_build/.jupyter_cache; kept=_build/.student-cache; \
+	rm -rf $$kept; \
+	if [ -z "$(FRESH)" ] && [ -d $$cache ] && [ "$$(cat _build/student/_build/.inputs 2>/dev/null)" = "$$inputs" ]; then \
+		mv $$cache $$kept; fi; \
 	$(PY) -m ddg.edition --out _build/student --vendor $(VENV)/vendor $(if $(FORCE),--force) \
-		$(if $(STUDENT_REPO),--student-repo $(STUDENT_REPO))
+		$(if $(STUDENT_REPO),--student-repo $(STUDENT_REPO)) || \
+		{ status=$$?; if [ -d $$kept ]; then mkdir -p _build/student/_build && mv $$kept $$cache; fi; exit $$status; }; \
+	mkdir -p _build/student/_build && echo "$$inputs" > _build/student/_build/.inputs; \
+	if [ -d $$kept ]; then mv $$kept $$cache; \
+		echo "ddg/, the pins and _config.yml unchanged: only notebooks whose code changed run again"; \
+	else echo "every notebook of the student edition runs"; fi
 	$(JB) build _build/student -W -n --keep-going
 	rm -rf _build/student/html && mv _build/student/_build/html _build/student/html
 	@echo "The student site is at $(CURDIR)/_build/student/html/index.html"

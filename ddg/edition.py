@@ -144,7 +144,9 @@ student site.
 def _configure(config, student_repo):
     """The course's ``_config.yml``, made into the student edition's."""
     config = config.replace('title: "', 'title: "Student edition: ', 1)
-    config = re.sub(r"execute_notebooks: \w+", "execute_notebooks: force", config)  # every page executed
+    # executed like the book's, from a cache that `make student` keeps only while ddg/ is unchanged
+    config = re.sub(r"execute_notebooks: \w+.*", "execute_notebooks: cache   # `make student` drops the cache when "
+                    "ddg/, the pins or _config.yml changed", config)
     config = config.replace("html_static_path: [.venv/vendor", "html_static_path: [_vendor")  # portable
     config = re.sub(r"(exclude_patterns: \[)", r"\1html, _vendor, ", config)
     if student_repo:

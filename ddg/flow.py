@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .curve import CURVATURES, DiscreteCurve, _choose, _real
+from .curve import CURVATURES, DiscreteCurve, _choose, _previous, _real
 
 try:  # a progress bar on long runs, when tqdm is installed (it is optional)
     from tqdm.auto import tqdm
@@ -71,7 +71,7 @@ def _speed_factor(curve, kind):
 def _travel_step(curve, kind):
     """The time in which the fastest vertex, relative to its shorter edge, crosses that edge."""
     lengths = curve.edge_lengths
-    h = np.minimum(lengths, np.roll(lengths, 1))  # the shorter edge at each vertex
+    h = np.minimum(lengths, _previous(lengths))  # the shorter edge at each vertex
     with np.errstate(divide="ignore", over="ignore"):  # a straight vertex (k = 0, or nearly) sets no limit
         return float(np.min(h / np.abs(curve.curvature(kind))))
 
@@ -87,7 +87,7 @@ def stable_step(curve, kind, safety=0.25):
     """
     safety = _real(safety, "safety", 0.0, strict=True)
     lengths = curve.edge_lengths
-    h = np.minimum(lengths, np.roll(lengths, 1))
+    h = np.minimum(lengths, _previous(lengths))
     diffusion = np.min(h * curve.dual_lengths / (2 * _speed_factor(curve, kind)))
     return safety * min(diffusion, _travel_step(curve, kind))
 
@@ -156,7 +156,7 @@ def _semi_implicit_step(curve, kind, dt):
     ``I - dt D`` is cyclic tridiagonal and diagonally dominant: :func:`solve_cyclic_tridiagonal`.
     """
     lengths = curve.edge_lengths
-    w_next, w_prev = 1 / lengths, 1 / np.roll(lengths, 1)
+    w_next, w_prev = 1 / lengths, 1 / _previous(lengths)
     s = dt * _speed_factor(curve, kind) / curve.dual_lengths
     return solve_cyclic_tridiagonal(-s * w_prev, 1 + s * (w_next + w_prev), -s * w_next, curve.vertices)
 
