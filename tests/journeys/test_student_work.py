@@ -67,6 +67,9 @@ def started_notebook(copy, limit=300):
             if "Executing notebook" in line or "Using cached notebook" in line or time.monotonic() > deadline:
                 break
     finally:
-        os.killpg(process.pid, signal.SIGTERM)
+        try:
+            os.killpg(process.pid, signal.SIGTERM)
+        except ProcessLookupError:  # it had ended (and its lines say why)
+            pass
         process.wait(timeout=30)
     return lines
