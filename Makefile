@@ -14,8 +14,9 @@ VENDOR := $(VENV)/vendor/.installed
 
 # The notebooks import the ddg of this checkout, whatever the environment holds.
 export PYTHONPATH := $(CURDIR)
-# What the pages are computed from: a change here means every notebook must run again.
-INPUTS = $$(find ddg -name '*.py' | sort | xargs cat requirements.txt _config.yml | cksum)
+# What the pages are computed from (Python, ddg/, the pins, the configuration): a change here means
+# every notebook must run again.
+INPUTS = $$({ $(PY) -VV; find ddg -name '*.py' | sort | xargs cat; cat requirements.txt pyproject.toml _config.yml; } | cksum)
 # What every page carries but Sphinx does not watch: the book's stylesheet, scripts and extension.
 ASSETS = $$(find book/_assets tools/sphinx_*.py -type f | sort | xargs cat | cksum)
 
@@ -104,8 +105,8 @@ lab: $(ENV) $(KERNEL)
 # and built like the book. _build/student/ is what a repository of student notebooks holds (set
 # STUDENT_REPO=https://github.com/owner/name for its launch buttons); _build/student/html the site.
 # The outputs of the last edition's notebooks are kept while ddg/, the pins and _config.yml are
-# unchanged since it was built, so only notebooks whose code changed run again; FRESH=1 runs them
-# all (`make test` does).
+# unchanged since it was built, so only notebooks whose code changed run again; FRESH=1 (any
+# value) runs them all (`make test` does).
 student: $(ENV) $(VENDOR) $(KERNEL)
 	@inputs="$(INPUTS)"; cache=_build/student/_build/.jupyter_cache; kept=_build/.student-cache; \
 	rm -rf $$kept; \

@@ -145,8 +145,8 @@ def _configure(config, student_repo):
     """The course's ``_config.yml``, made into the student edition's."""
     config = config.replace('title: "', 'title: "Student edition: ', 1)
     # executed like the book's, from a cache that `make student` keeps only while ddg/ is unchanged
-    config = re.sub(r"execute_notebooks: \w+.*", "execute_notebooks: cache   # `make student` drops the cache when "
-                    "ddg/, the pins or _config.yml changed", config)
+    config = re.sub(r"execute_notebooks: \w+.*", "execute_notebooks: cache   # a notebook runs again when its code changes",
+                    config)
     config = config.replace("html_static_path: [.venv/vendor", "html_static_path: [_vendor")  # portable
     config = re.sub(r"(exclude_patterns: \[)", r"\1html, _vendor, ", config)
     if student_repo:

@@ -82,8 +82,11 @@ class Visit:
         self.page.on("response", lambda r: r.status >= 400 and not self.ignoring and self.failed.append(f"{r.status} {r.url}"))
         self.page.on("requestfailed", lambda r: not self.ignoring and self.failed.append(f"failed {r.url}: {r.failure}"))
         url = base + path
-        with urllib.request.urlopen(url) as response:  # loopback only
-            redirect = REFRESH.search(response.read().decode("utf-8", "replace"))
+        try:  # loopback only; a page that cannot be read is reported by the visit itself
+            with urllib.request.urlopen(url, timeout=10) as response:
+                redirect = REFRESH.search(response.read().decode("utf-8", "replace"))
+        except OSError:
+            redirect = None
         self.page.goto(url, wait_until="load")
         if redirect:  # a redirect page (the site's index.html): the reader lands on its target
             self.page.wait_for_url(urllib.parse.urljoin(url, redirect.group(1)), wait_until="load")

@@ -34,7 +34,7 @@ CONTRAST_SAMPLE = r"""() => {
     document.querySelectorAll("[data-ddg-contrast]").forEach(e => e.removeAttribute("data-ddg-contrast"));
     const kind = e => { const s = getComputedStyle(e);
         return [e.tagName, e.className, s.color, s.backgroundColor, s.backgroundImage, s.opacity,
-                s.fontSize, s.fontWeight, s.textShadow, s.filter].join("|"); };
+                s.fontSize, s.fontWeight, s.textShadow, s.filter, s.visibility].join("|"); };
     // an element's kind together with its ancestors' kinds, as a number: each element's style is
     // read once, and (its kind, its parent's number) names it
     const numbers = new Map(), ofElement = new Map();
@@ -161,10 +161,11 @@ def axe_violations(visit, options):
                                                      ("dark", "main figcaption", "#4a4a4a")])
 def test_the_contrast_sample_finds_a_faint_style(servers, browser, view, selector, colour):
     """Colour contrast is judged on a sample of elements: one kind of text made faint (keywords in
-    the code cells; figure captions on the dark theme) is found all the same."""
-    visit = Visit(browser, servers["book"], "book/07_convergence.html", view)
+    the code cells; figure captions on the dark theme, sampled again after the switch) is found."""
+    visit = Visit(browser, servers["book"], "book/07_convergence.html")  # as the page test: desktop first
     try:
-        assert not axe_violations(visit, AXE_COLOURS)
+        assert not axe_violations(visit, AXE_OPTIONS)
+        visit.show(view)
         visit.page.add_style_tag(content=f"{selector} {{ color: {colour} !important; }}")
         found = axe_violations(visit, AXE_COLOURS)
     finally:

@@ -19,10 +19,16 @@ WHEELHOUSE = VENV / "wheelhouse"
 OFFLINE_PIP = {"PIP_NO_INDEX": "1", "PIP_FIND_LINKS": str(WHEELHOUSE), "PIP_DISABLE_PIP_VERSION_CHECK": "1"}
 
 
+def user_environment():
+    """The environment without what make or pytest set for themselves (PYTHONPATH points at this
+    checkout's ddg) and without the variables the Makefile reads (FRESH=1 in `make test`)."""
+    return {k: v for k, v in os.environ.items()
+            if not k.startswith(("PYTEST", "MAKE", "MFLAGS", "PYTHONPATH")) and k not in ("FRESH", "FORCE", "STUDENT_REPO")}
+
+
 def run(command, cwd=ROOT, env=None, timeout=600, check=True):
     """Run ``command`` (a list), return the CompletedProcess with stdout and stderr merged."""
-    # not what make or pytest set for themselves (PYTHONPATH points at this checkout's ddg)
-    full_env = {k: v for k, v in os.environ.items() if not k.startswith(("PYTEST", "MAKE", "MFLAGS", "PYTHONPATH"))}
+    full_env = user_environment()
     full_env.update(env or {})
     result = subprocess.run(command, cwd=cwd, env=full_env, timeout=timeout, text=True,
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT)

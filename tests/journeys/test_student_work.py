@@ -6,12 +6,13 @@ the last build, unless ddg/ changed since: then every notebook runs again.
 
 import json
 import os
+import queue
 import shutil
 import signal
 import subprocess
-import time
+import threading
 
-from journey_helpers import ROOT, copy_repository, run
+from journey_helpers import ROOT, copy_repository, run, user_environment
 
 
 def test_student_answers_are_never_deleted(tmp_path):
@@ -40,13 +41,19 @@ def test_student_answers_are_never_deleted(tmp_path):
     assert "Executing notebook" not in result.stdout and result.stdout.count("Using cached notebook") == 9
     assert "not written yet" in (copy / "_build" / "student" / "html" / "book" / "02_discrete_curves.html").read_text()
 
-    # after a change to ddg/ the cache is dropped: the rebuild starts running the notebooks (it is
-    # stopped there; the book's journey in test_rebuild.py sees such a rebuild to the end)
-    checks = copy / "ddg" / "checks.py"
-    checks.write_text(checks.read_text() + "\n# changed by the instructor\n")
-    lines = started_notebook(copy)
-    assert "every notebook of the student edition runs" in lines, lines[-20:]
-    assert "Executing notebook" in lines[-1], lines[-20:]  # the first notebook runs, not its cached outputs
+    # FRESH=1, and after a change to ddg/ a plain rebuild, drop the cache: the first notebook runs
+    # (the rebuild is stopped there; the book's journey in test_rebuild.py sees one to the end)
+    checks, state = copy / "ddg" / "checks.py", copy / "_build" / "student" / "_build"
+    saved = shutil.copytree(state, tmp_path / "saved")  # the cache and its record, as the build left them
+    for command, change in ((["make", "student", "FRESH=1"], None), (["make", "student"], "# changed by the instructor\n")):
+        shutil.rmtree(state, ignore_errors=True)
+        shutil.copytree(saved, state)
+        if change:
+            checks.write_text(checks.read_text() + "\n" + change)
+        lines = started_notebook(command, copy)
+        assert "every notebook of the student edition runs" in lines, (command, lines[-20:])
+        assert not any("Using cached notebook" in line for line in lines), (command, lines[-20:])
+        assert "Executing notebook" in lines[-1], (command, lines[-20:])  # it runs, not its cached outputs
 
     run(["make", "clean"], cwd=copy)  # an unchanged edition is deleted freely
     assert not (copy / "_build").exists()
@@ -54,17 +61,22 @@ def test_student_answers_are_never_deleted(tmp_path):
     # tested without a build in tests/test_edition.py
 
 
-def started_notebook(copy, limit=300):
-    """Run `make student` in ``copy`` until jupyter-book starts executing a notebook or reuses one;
-    stop it there and return the lines it printed."""
-    env = {k: v for k, v in os.environ.items() if not k.startswith(("PYTEST", "MAKE", "MFLAGS", "PYTHONPATH"))}
-    process = subprocess.Popen(["make", "student"], cwd=copy, env=env, text=True, stdout=subprocess.PIPE,
+def started_notebook(command, copy, limit=300):
+    """Run ``command`` in ``copy`` until jupyter-book starts executing a notebook or reuses one (or
+    ``limit`` seconds pass); stop it there and return the lines it printed."""
+    process = subprocess.Popen(command, cwd=copy, env=user_environment(), text=True, stdout=subprocess.PIPE,
                                stderr=subprocess.STDOUT, start_new_session=True)
-    lines, deadline = [], time.monotonic() + limit
+    lines = queue.Queue()
+    threading.Thread(target=lambda: [lines.put(line.rstrip("\n")) for line in process.stdout] + [lines.put(None)],
+                     daemon=True).start()
+    seen = []
     try:
-        for line in process.stdout:
-            lines.append(line.rstrip("\n"))
-            if "Executing notebook" in line or "Using cached notebook" in line or time.monotonic() > deadline:
+        while True:
+            line = lines.get(timeout=limit)  # queue.Empty: it printed nothing for `limit` seconds
+            if line is None:
+                break
+            seen.append(line)
+            if "Executing notebook" in line or "Using cached notebook" in line:
                 break
     finally:
         try:
@@ -72,4 +84,4 @@ def started_notebook(copy, limit=300):
         except ProcessLookupError:  # it had ended (and its lines say why)
             pass
         process.wait(timeout=30)
-    return lines
+    return seen
