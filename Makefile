@@ -2,8 +2,8 @@
 #   make book   build the course companion into _build/html
 #   make test   run every test (unit tests, notebooks, the strict build, browser, user journeys)
 # and: make lab (JupyterLab on book/), make bench, make student, make dist, make repo URL=...,
-# make clean. Each creates .venv from the exact pins in requirements.txt when it is missing or
-# the pins changed. Needs GNU make 3.81 or newer (Linux; the make of macOS) and a POSIX sh.
+# make screenshots, make clean. Each creates .venv from the exact pins in requirements.txt when
+# it is missing or the pins changed. Needs GNU make 3.81 or newer (Linux; the make of macOS) and a POSIX sh.
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
@@ -20,7 +20,7 @@ INPUTS = $$({ $(PY) -VV; find ddg -name '*.py' | sort | xargs cat; cat requireme
 # What every page carries but Sphinx does not watch: the book's stylesheet, scripts and extension.
 ASSETS = $$(find book/_assets tools/sphinx_*.py -type f | sort | xargs cat | cksum)
 
-.PHONY: book book-strict test lab bench student pdf dist repo clean
+.PHONY: book book-strict test lab bench student pdf dist repo screenshots clean
 
 # The environment, rebuilt when requirements.txt or pyproject.toml change (by content, so a fresh
 # clone or a copy with the same pins keeps it). The pins are installed by uv (pinned below; about
@@ -93,7 +93,6 @@ test: $(ENV) $(VENDOR) $(KERNEL)
 		--ignore=tests/browser --ignore=tests/journeys
 	$(MAKE) -j2 book-strict student FRESH=1
 	$(MAKE) pdf
-	rm -rf _build/screenshots
 	$(PY) -m pytest -n 2 --dist worksteal --durations=12 tests/journeys tests/browser
 
 # JupyterLab on the chapter notebooks; it prints the URL to open (with its token).
@@ -133,6 +132,17 @@ pdf: $(ENV)
 		$(PY) tools/pdf.py _build/student/html _build/pdf/student & student=$$!; fi; \
 	$(PY) tools/pdf.py _build/html _build/pdf; book=$$?; \
 	if [ -n "$$student" ]; then wait $$student || exit 1; fi; exit $$book
+
+# A screenshot of every page of both sites in each view the browser tests check (desktop, phone,
+# dark), in _build/screenshots/<site>/<view>/, from the sites as they are built (both are built
+# first where missing). `make test` takes none: they assert nothing, and cost a quarter of the time.
+screenshots: $(ENV) $(VENDOR) $(KERNEL)
+	@[ -f _build/html/index.html ] || $(MAKE) book
+	@[ -f _build/student/html/index.html ] || $(MAKE) student
+	@$(PY) tools/browser.py >/dev/null
+	rm -rf _build/screenshots
+	DDG_SCREENSHOTS=1 $(PY) -m pytest -q -n 2 tests/browser/test_site.py -k every_view
+	@echo "The screenshots are in $(CURDIR)/_build/screenshots/"
 
 bench: $(ENV)
 	$(PY) tests/benchmark.py

@@ -6,8 +6,8 @@ visible h1, at 1280 px no code or output box scrolling sideways and small figure
 at 390 px no page scrolling sideways (wide tables and equations scroll inside their own box, with
 a visible cue) and figures not shrunk, on the dark theme figures not dimmed, and no serious or
 critical violation of axe-core's WCAG 2 A/AA rules. Solutions are folded until a reader clicks
-their title, which opens them without leaving the page. A screenshot of each page in each view is
-saved.
+their title, which opens them without leaving the page. With DDG_SCREENSHOTS set (`make
+screenshots`), a screenshot of each page in each view is saved.
 """
 
 import pathlib
@@ -232,6 +232,29 @@ def test_page_reads_right_in_every_view(servers, browser, site, path):
     finally:
         visit.close()
     assert not problems, "\n".join(problems)
+
+
+def test_screenshots_are_saved_whole_when_asked_for(servers, browser, monkeypatch, tmp_path):
+    """`make screenshots` (DDG_SCREENSHOTS set) saves each view of a page whole, as a JPEG."""
+    import browser_helpers
+
+    monkeypatch.setattr(browser_helpers, "SHOTS", tmp_path)
+    visit = Visit(browser, servers["student"], "book/04_gradient_of_length.html")
+    try:
+        visit.screenshot("student", "phone", "book/04_gradient_of_length.html")
+        assert not list(tmp_path.rglob("*.jpg")), "a screenshot without DDG_SCREENSHOTS"
+        monkeypatch.setenv("DDG_SCREENSHOTS", "1")
+        visit.show("phone")
+        height = visit.page.evaluate("document.documentElement.scrollHeight")
+        visit.screenshot("student", "phone", "book/04_gradient_of_length.html")
+    finally:
+        visit.close()
+    shot = tmp_path / "student" / "phone" / "book__04_gradient_of_length.jpg"
+    data = shot.read_bytes()
+    assert data[:3] == b"\xff\xd8\xff", "not a JPEG"
+    start = data.index(b"\xff\xc0")  # the frame header: height, then width
+    assert (int.from_bytes(data[start + 5:start + 7], "big"), int.from_bytes(data[start + 7:start + 9], "big")) \
+        == (height, 390), "not the whole page at phone width"
 
 
 def test_both_sites_were_found():
