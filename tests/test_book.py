@@ -83,6 +83,15 @@ def test_prose_cannot_break_and_jupyterlab_folds_what_the_book_folds():
     assert result.returncode == 0, result.stdout
 
 
+def test_reading_a_notebook_compiles_no_grammar():
+    """Every process that reads a notebook imports nbformat, hence jsonschema; with rfc3987-syntax
+    installed, jsonschema compiles 39 Earley parsers at import (2.2 s here, in each jupyter-book
+    run, nbval worker, JupyterLab and grading sandbox). requirements.txt keeps it out."""
+    code = "import sys, nbformat, jupyter_events.validators; print(sorted({'rfc3987_syntax', 'lark'} & set(sys.modules)))"
+    loaded = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert loaded.strip() == "[]", loaded
+
+
 def test_plot_curve_closes_closed_curves():
     fig, ax = plt.subplots()
     line = ddg.plot.plot_curve(ddg.regular_polygon(5), ax)
