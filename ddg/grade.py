@@ -159,7 +159,7 @@ def _limits(memory, cpu):
     return apply
 
 
-def grade_one(submission, table, secret, timeout, memory, cell_timeout):
+def grade_one(submission, table, secret, timeout, memory, cell_timeout, answer_timeout=checks.TIME_LIMIT):
     """Grade one submission: ``(points by label, feedback lines)``."""
     chapter = chapter_of(submission, table)
     if chapter is None:
@@ -184,7 +184,8 @@ def grade_one(submission, table, secret, timeout, memory, cell_timeout):
                "MPLCONFIGDIR": str(work / "matplotlib"), "PYTHONPATH": os.pathsep.join(sys.path[1:]),
                "PYDEVD_DISABLE_FILE_VALIDATION": "1", "TMPDIR": str(work), "WORK": str(work)}
         command = [*_sandbox(), sys.executable, "-m", "ddg.grade", "--run-one", str(work / "submission.ipynb"),
-                   "--jobs-json", json.dumps(jobs), "--cell-timeout", str(cell_timeout)]
+                   "--jobs-json", json.dumps(jobs), "--cell-timeout", str(cell_timeout),
+                   "--answer-timeout", str(answer_timeout)]
         with tempfile.TemporaryFile() as log:  # the grader's own file: only the runner's output lands here
             process = subprocess.Popen(command, cwd=work, env=env, stdout=log, stderr=subprocess.STDOUT,
                                        stdin=subprocess.DEVNULL, preexec_fn=_limits(memory, timeout))
@@ -221,7 +222,8 @@ def grade_one(submission, table, secret, timeout, memory, cell_timeout):
     return points, feedback
 
 
-def grade(submissions, book, out, secret, jobs=None, timeout=180, memory=4 << 30, cell_timeout=60):
+def grade(submissions, book, out, secret, jobs=None, timeout=180, memory=4 << 30, cell_timeout=60,
+          answer_timeout=checks.TIME_LIMIT):
     """Grade ``submissions`` in parallel; write the CSV ``out`` and a feedback folder next to it."""
     table = exercises(book)
     labels = [label for chapter in table.values() for label in chapter]
@@ -229,7 +231,8 @@ def grade(submissions, book, out, secret, jobs=None, timeout=180, memory=4 << 30
     folder = out.with_name(out.stem + "-feedback")
     folder.mkdir(parents=True, exist_ok=True)
     with concurrent.futures.ThreadPoolExecutor(jobs or os.cpu_count()) as pool:
-        futures = {s: pool.submit(grade_one, s, table, secret, timeout, memory, cell_timeout) for s in submissions}
+        futures = {s: pool.submit(grade_one, s, table, secret, timeout, memory, cell_timeout, answer_timeout)
+                   for s in submissions}
         graded = {s: f.result() for s, f in futures.items()}
     used = [label for label in labels if any(label in points for points, _ in graded.values())]
     with open(out, "w", newline="") as file:
@@ -252,11 +255,13 @@ def main(argv=None):
     parser.add_argument("--timeout", type=int, default=180, help="seconds for one submission")
     parser.add_argument("--memory", type=int, default=4096, help="megabytes for one submission")
     parser.add_argument("--cell-timeout", type=int, default=60, help="seconds for one cell")
+    parser.add_argument("--answer-timeout", type=float, default=checks.TIME_LIMIT,
+                        help=f"seconds for each exercise's answer on its input (default {checks.TIME_LIMIT:g}, as the checks)")
     parser.add_argument("--run-one", help=argparse.SUPPRESS)
     parser.add_argument("--jobs-json", help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     if args.run_one:  # inside the sandbox
-        run_one(args.run_one, [tuple(job) for job in json.loads(args.jobs_json)], args.cell_timeout, checks.TIME_LIMIT)
+        run_one(args.run_one, [tuple(job) for job in json.loads(args.jobs_json)], args.cell_timeout, args.answer_timeout)
         return
     if not args.submissions:
         parser.error("no submissions given")
@@ -264,7 +269,7 @@ def main(argv=None):
         print("note: no sandbox on this machine (it needs Linux, root, unshare and setpriv): the "
               "submissions run as you, with time and memory limits only", file=sys.stderr)
     graded = grade(args.submissions, args.book, args.out, args.seed or secrets.token_hex(16), args.jobs,
-                   args.timeout, args.memory << 20, args.cell_timeout)
+                   args.timeout, args.memory << 20, args.cell_timeout, args.answer_timeout)
     print(f"graded {len(graded)} submissions: {args.out}, feedback in {pathlib.Path(args.out).stem}-feedback/")
 
 

@@ -1,7 +1,7 @@
 """Exercises in the browser: checks on the student site, no solution there, launch buttons where they lead somewhere.
 
-(That the book's solutions are folded until their title is clicked is checked on every page by
-test_site.py.)
+(That the book's solutions are folded until their title is clicked, and that only the book's
+chapters have launch buttons, is checked on every page by test_site.py.)
 """
 
 import re
@@ -26,16 +26,6 @@ def test_the_student_site_has_exercises_checks_and_no_solution(servers, browser)
         assert page.get_by_text("not written yet").count() >= 2  # the checks ran on the starters
     finally:
         visit.close()
-
-
-def test_the_book_says_which_launch_buttons_there_are(servers, browser):
-    for site, expected in (("book", True), ("student", False)):
-        visit = Visit(browser, servers[site], "book/03_winding_number.html")
-        try:
-            launch = visit.page.locator("a[href*='mybinder.org'], a[href*='colab.research']").count()
-            assert bool(launch) == expected, (site, launch)
-        finally:
-            visit.close()
 
 
 def test_pages_of_both_sites_match():
