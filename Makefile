@@ -91,7 +91,7 @@ test: $(ENV) $(VENDOR) $(KERNEL)
 	@$(PY) tools/browser.py >/dev/null
 	$(PY) -m pytest -n 2 --dist loadscope --nbval-lax --nbval-current-env tests book \
 		--ignore=tests/browser --ignore=tests/journeys
-	$(MAKE) -j2 book-strict student FRESH=1
+	$(MAKE) -j2 book-strict student FRESH=1 STUDENT_REPO=
 	$(MAKE) pdf
 	$(PY) -m pytest -n 2 --dist worksteal --durations=12 tests/journeys tests/browser
 

@@ -118,7 +118,7 @@ class Visit:
         return [m for m in self.console if not any(re.search(a, m) for a in ALLOWED_CONSOLE)]
 
     def screenshot(self, site, view, path):
-        if not os.environ.get("DDG_SCREENSHOTS"):
+        if os.environ.get("DDG_SCREENSHOTS", "") in ("", "0"):  # set by `make screenshots`
             return
         folder = SHOTS / site / view
         folder.mkdir(parents=True, exist_ok=True)

@@ -1,4 +1,4 @@
-"""Exercises in the browser: checks on the student site, no solution there, launch buttons where they lead somewhere.
+"""Exercises in the browser: checks on the student site, and no solution there.
 
 (That the book's solutions are folded until their title is clicked, and that only the book's
 chapters have launch buttons, is checked on every page by test_site.py.)

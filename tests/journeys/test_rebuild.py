@@ -3,7 +3,7 @@
 In a temporary copy of the repository (sharing .venv, whose pins are the same), with the book
 already built there: a message that ddg prints changes, and the next `make book` must run every
 notebook again and show the new message. The copy's book leaves out chapters 4 and 6-8, which no
-other chapter links to and which take 40 of the 60 s the nine notebooks take to run: the
+other chapter links to and which take two thirds of the time the notebooks take to run: the
 Makefile's rule does not look at which notebooks there are. Then the book's stylesheet changes, and the next
 `make book` must serve the new one on every page without running a notebook. Then ddg/plot.py is broken, and the build `make test`
 gates on (`make book-strict`) must fail, although `make book` has just succeeded.
@@ -30,9 +30,9 @@ def trim_book(copy):
         part["chapters"] = [c for c in part["chapters"] if not DROPPED.match(c["file"])]
     toc["parts"] = [part for part in toc["parts"] if part["chapters"]]
     path.write_text(yaml.safe_dump(toc, sort_keys=False))
+    listed = sorted(c["file"].removeprefix("book/") for part in toc["parts"] for c in part["chapters"])
     notebooks = sorted(p.stem for p in (copy / "book").glob("*.ipynb"))
-    assert notebooks == ["01_smooth_curves", "02_discrete_curves", "03_winding_number", "05_inflation",
-                         "09_explorers"], notebooks
+    assert set(notebooks) <= set(listed) and len(notebooks) >= 5, (notebooks, listed)
     return notebooks
 
 
