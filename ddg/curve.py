@@ -36,6 +36,9 @@ MAX_ARC_POINTS = 1_000_000
 Beyond it the arc step grows to ``sum |psi_i| / MAX_ARC_POINTS``: a curve with ``10**5`` sharp corners
 gets about 10 points per corner (area error below 2% of the sectors' area) instead of 300 (3 GB)."""
 
+_ABOVE_MINUS_PI = np.nextafter(-np.pi, 0.0)
+"""The least turning angle: the range is ``(-pi, pi]``."""
+
 _SAFE = 1e-150, 1e150
 """Edge lengths in this range have squares and pairwise products far from under- and overflow."""
 
@@ -320,6 +323,9 @@ class DiscreteCurve:
         """
         psi = np.arctan(self._tan_half_psi)
         psi *= 2.0
+        # a clockwise turn of nearly -pi whose sign is known (the edges are not exactly opposite)
+        # may round to -pi, outside the range: it is kept just inside
+        np.maximum(psi, _ABOVE_MINUS_PI, out=psi)
         psi.flags.writeable = False
         return psi
 
@@ -342,8 +348,21 @@ class DiscreteCurve:
 
     @cached_property
     def turning_number(self):
-        """``sum_i psi_i / (2 pi)``, an integer for every closed polygon (lecture §3.2)."""
+        """``sum_i psi_i / (2 pi)``, an integer for every closed polygon (lecture §3.2).
+
+        A curve that turns straight back somewhere (``psi_i = pi``: its two edges point in exactly
+        opposite directions) has no turning number: counting that turn as ``+pi``, as the range
+        ``(-pi, pi]`` does, would make a reflection keep the count instead of negating it. It
+        raises ``ValueError`` naming the vertex; ``turning_angles.sum() / (2 pi)`` gives the count
+        under the book's convention.
+        """
         self._require_closed("the turning number")
+        if len(self._reversals):
+            raise ValueError(
+                f"the turning number is not defined: the curve turns straight back at vertex "
+                f"{self._vertex_index(self._reversals[0])} (its two edges, as computed, point in "
+                "exactly opposite directions), where a turn of +pi and one of -pi are equally right"
+            )
         return int(round(float(self.turning_angles.sum()) / (2 * np.pi)))
 
     @cached_property
@@ -465,6 +484,28 @@ class DiscreteCurve:
             g[1:] += T
             g[:-1] -= T
         return g / self.dual_lengths[:, None]
+
+    def laplacian(self, F):
+        """The discrete Laplacian of ``F`` on a closed curve (the book's chapter 4):
+
+        ``(Lap F)_i = ((F_{i+1} - F_i) / |e_{i+1/2}| - (F_i - F_{i-1}) / |e_{i-1/2}|) / A_i``.
+
+        ``F`` is a discrete function, shape ``(n,)`` or ``(n, 2)``. This is the piecewise-linear
+        finite-element Laplacian with the dual lengths as masses, the one-dimensional case of the
+        cotan Laplacian. It is symmetric for ``<.,.>``, ``<Lap F, F> <= 0``, and on the vertices
+        it is minus the gradient of length: ``laplacian(vertices) == -length_gradient()``.
+        """
+        self._require_closed("the Laplacian")
+        if np.iscomplexobj(F):
+            raise ValueError("F must be a real discrete function, got complex values")
+        F = np.asarray(F, dtype=float)
+        n = len(self)
+        if F.shape not in ((n,), (n, 2)):
+            raise ValueError(f"F must have one value per vertex, shape ({n},) or ({n}, 2); got shape {F.shape}")
+        lengths = self.edge_lengths if F.ndim == 1 else self.edge_lengths[:, None]
+        flux = (np.roll(F, -1, axis=0) - F) / lengths  # (F_{i+1} - F_i) / |e_{i+1/2}|
+        A = self.dual_lengths if F.ndim == 1 else self.dual_lengths[:, None]
+        return (flux - _previous(flux)) / A
 
     # -------------------------------------------------------------- inflation (lecture §3.4)
 
