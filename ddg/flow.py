@@ -148,7 +148,7 @@ def solve_cyclic_tridiagonal(a, b, c, d):
     return x
 
 
-def _semi_implicit_step(curve, kind, dt):
+def semi_implicit_step(curve, kind, dt):
     """Solve ``(I - dt D) v_new = v`` with ``D`` built from the current curve (lengths frozen).
 
     ``(D v)_i = g_i / A_i * ((v_{i+1} - v_i) / |e_{i+1/2}| - (v_i - v_{i-1}) / |e_{i-1/2}|)`` equals
@@ -301,7 +301,7 @@ def flow(curve, kind="sine", t_end=1.0, *, method="explicit", dt=None, safety=0.
             if method == "explicit":
                 new = curve.vertices + step * velocity(curve, kind)
             else:
-                new = _semi_implicit_step(curve, kind, step)
+                new = semi_implicit_step(curve, kind, step)
             new = DiscreteCurve(new)
             if remesh_every and (steps + 1) % remesh_every == 0:
                 new = remesh(new)

@@ -60,7 +60,7 @@ def explorer_updates():
 
 def flow_steps_per_second():
     """Steps per second of whole ddg.flow runs (step choice, move, checks, records) on a regular n-gon."""
-    from ddg.flow import _semi_implicit_step, flow
+    from ddg.flow import semi_implicit_step, flow
 
     print(f"\n{'flow, sine, regular n-gon':>26} {'explicit [steps/s]':>19} {'semi-implicit [steps/s]':>24} "
           f"{'semi-implicit step peak [MB]':>29}")
@@ -71,7 +71,7 @@ def flow_steps_per_second():
                  for method in ("explicit", "semi-implicit")]
         gc.collect()
         tracemalloc.start()
-        _semi_implicit_step(curve, "sine", 1e-3)
+        semi_implicit_step(curve, "sine", 1e-3)
         _, peak = tracemalloc.get_traced_memory()
         tracemalloc.stop()
         print(f"{f'n = 10^{exponent}':>26} " + " ".join(f"{run.steps / run.seconds:>{width}.1f}" for run, width

@@ -21,7 +21,7 @@ from hypothesis import strategies as st
 import ddg
 import ddg.curve
 from ddg import smooth
-from ddg.flow import FlowRun, _semi_implicit_step, flow, remaining_lifetime, solve_cyclic_tridiagonal
+from ddg.flow import FlowRun, semi_implicit_step, flow, remaining_lifetime, solve_cyclic_tridiagonal
 
 # ddg never leaves a numpy RuntimeWarning (overflow, invalid value) to the user: hostile input gets an
 # answer or a clear error
@@ -113,7 +113,7 @@ def test_semi_implicit_step_uses_linear_memory():
     # the old step built dense n x n matrices: at n = 3000 that is 72 MB each, 2.4 GB at n = 10^4
     c = ddg.regular_polygon(3000)
     tracemalloc.start()
-    new = _semi_implicit_step(c, "sine", 1e-3)
+    new = semi_implicit_step(c, "sine", 1e-3)
     _, peak = tracemalloc.get_traced_memory()
     tracemalloc.stop()
     assert peak < 200 * 3000 * 8  # a few hundred bytes per vertex
