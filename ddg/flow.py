@@ -95,7 +95,7 @@ def stable_step(curve, kind, safety=0.25):
 def remaining_lifetime(curve, kind):
     """How long the curve has left under the flow, estimated from the rate of its area (or length).
 
-    Along ``dv_i/dt = -k_i N_i``: ``dA/dt = -sum_i A_i k_i cos(psi_i/2)`` (chain rule; chapter 8 of
+    Along ``dv_i/dt = -k_i N_i``: ``dA/dt = -sum_i A_i k_i cos(psi_i/2)`` (chain rule; chapter 9 of
     the book), about ``-2 pi`` times the turning number. The estimate is ``A / |dA/dt|``, exact for a
     regular polygon, whose area falls at a constant rate. Where that says nothing (turning number
     0, as for a figure-eight, or an area moving away from 0) it is ``L / |dL/dt|``, with

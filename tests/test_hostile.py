@@ -28,7 +28,7 @@ from ddg.flow import FlowRun, semi_implicit_step, flow, remaining_lifetime, solv
 pytestmark = pytest.mark.filterwarnings("error::RuntimeWarning")
 EPS = np.finfo(float).eps
 SQUARE = np.array([[0.0, 0.0], [0.0, 1.0], [1.0, 1.0], [1.0, 0.0]])  # clockwise, area 1
-AREA_RATES = {  # d(area)/dt of a clockwise regular n-gon (GUIDE §1, chapter 8)
+AREA_RATES = {  # d(area)/dt of a clockwise regular n-gon (chapter 9)
     "sine": lambda n: n * np.sin(2 * np.pi / n),
     "angle": lambda n: 2 * np.pi * np.cos(np.pi / n),
     "tangent": lambda n: 2 * n * np.sin(np.pi / n),

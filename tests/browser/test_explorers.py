@@ -155,15 +155,15 @@ def test_every_control_redraws_and_the_numbers_agree_with_ddg(servers, browser, 
 
 def test_explorers_and_animations_are_on_their_pages():
     found = {p: (SITES["book"] / p).read_text().count('class="ddg-explorer"') for p in pages("book")}
-    assert found["book/09_explorers.html"] == 3
-    assert found["book/05_inflation.html"] == 1 and found["book/08_curve_shortening.html"] == 1
+    assert found["book/10_explorers.html"] == 3
+    assert found["book/05_inflation.html"] == 1 and found["book/09_curve_shortening.html"] == 1
 
 
 def test_without_javascript_the_first_state_is_drawn(servers, browser):
     context = browser.new_context(java_script_enabled=False)
     try:
         page = context.new_page()
-        page.goto(servers["book"] + "book/09_explorers.html")
+        page.goto(servers["book"] + "book/10_explorers.html")
         statics = page.locator(".ddg-static")
         assert statics.count() == 3 and all(statics.nth(i).is_visible() for i in range(3))
         assert page.locator(".ddg-static svg path").count() > 10

@@ -38,7 +38,7 @@ def test_student_answers_are_never_deleted(tmp_path):
     assert "my_answer" not in notebook.read_text()
     # nothing the outputs depend on changed (03's starter is back as it was): no notebook runs
     assert "only notebooks whose code changed run again" in result.stdout, result.stdout[-2000:]
-    assert "Executing notebook" not in result.stdout and result.stdout.count("Using cached notebook") == 9
+    assert "Executing notebook" not in result.stdout and result.stdout.count("Using cached notebook") == len(list((ROOT / "book").glob("*.ipynb")))
     assert "not written yet" in (copy / "_build" / "student" / "html" / "book" / "02_discrete_curves.html").read_text()
 
     # FRESH=1, and after a change to ddg/ a plain rebuild, drop the cache: the first notebook runs
