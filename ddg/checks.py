@@ -595,7 +595,7 @@ def _slanted_reversal(rng):
             return np.array([[0.0, 0.0], a, a + b, a + b + 0.7 * np.array([-d[1], d[0]])])
 
 
-@_exercise("turning_angles", forbidden=("turning_angles", "_tan_half_psi", "curvature", "_tangent_curvature",
+@_exercise("turning_angles", forbidden=("turning_angles", "_tan_half_psi", "curvature", "bisector_normals",
                                         "total_curvature", "turning_number"))
 class _TurningAngles:
     @staticmethod
@@ -707,7 +707,7 @@ def check_rebuild(rebuild, seed=None):
 # ------------------------------------------------------------------------------- chapter 4
 
 
-@_exercise("length_gradient", forbidden=("length_gradient", "curvature", "_tangent_curvature"))
+@_exercise("length_gradient", forbidden=("length_gradient", "curvature", "laplacian"))
 class _LengthGradient:
     @staticmethod
     def draw(rng):

@@ -7,9 +7,10 @@ the gradient of length) with speed given by one of the three discrete curvatures
 
     d v_i / dt = -k_i N_i.
 
-For the sine curvature (eq. 3) this is ``-(grad L)_i``: the true gradient flow of length for the
-lecture's inner product (§3.3). The angle and tangent curvatures move the same direction at other
-speeds, ``k_i = g_i k_i^sine`` with ``g = (psi/2) / sin(psi/2)`` or ``1 / cos(psi/2)``.
+For the sine curvature (eq. 3) this is ``-(grad L)_i = (Lap gamma)_i``: the gradient flow of length
+for the lecture's inner product (§3.3), a heat equation for the positions. The angle and tangent
+curvatures move the same way at other speeds, ``k_i = g_i k_i^sine`` with
+``g = (psi/2) / sin(psi/2)`` or ``1 / cos(psi/2)``.
 
 >>> run = ddg.flow.flow(ddg.regular_polygon(64), "sine", t_end=0.2)        # doctest: +SKIP
 >>> run.times, run.lengths, run.areas, run.turning_numbers, run.snapshots  # doctest: +SKIP
@@ -20,7 +21,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .curve import CURVATURES, DiscreteCurve, _choose, _previous, _real
+from . import _numerics as nx
+from .curve import CURVATURES, DiscreteCurve
 
 try:  # a progress bar on long runs, when tqdm is installed (it is optional)
     from tqdm.auto import tqdm
@@ -32,8 +34,8 @@ METHODS = ("explicit", "semi-implicit")
 
 @dataclass
 class FlowRun:
-    """What a run recorded: one entry per recorded step (the first and the last state always),
-    snapshots for drawing, why it stopped, and how long it took (``seconds``)."""
+    """What a run recorded: the first and the last state and the states in between, spaced by the
+    curve's life (see :func:`flow`), snapshots for drawing, why it stopped, and its cost."""
 
     kind: str
     method: str
@@ -58,37 +60,38 @@ def velocity(curve, kind):
     return -curve.curvature(kind)[:, None] * curve.bisector_normals
 
 
-def _speed_factor(curve, kind):
+def speed_factor(curve, kind):
     """``g_i = k_i / k_i^sine``: how much faster than the gradient flow of length each vertex moves."""
     half = curve.turning_angles / 2
     if kind == "sine":
         return np.ones(len(curve))
     if kind == "angle":
-        return 1 / np.sinc(half / np.pi)  # (psi/2) / sin(psi/2), = 1 at psi = 0
+        return 1 / np.sinc(half / np.pi)  # (psi/2) / sin(psi/2), 1 at psi = 0
     return 1 / np.cos(half)
+
+
+def _shorter_edges(curve):
+    """The shorter of the two edges at each vertex."""
+    return np.minimum(curve.edge_lengths, nx.previous(curve.edge_lengths))
 
 
 def _travel_step(curve, kind):
     """The time in which the fastest vertex, relative to its shorter edge, crosses that edge."""
-    lengths = curve.edge_lengths
-    h = np.minimum(lengths, _previous(lengths))  # the shorter edge at each vertex
-    with np.errstate(divide="ignore", over="ignore"):  # a straight vertex (k = 0, or nearly) sets no limit
-        return float(np.min(h / np.abs(curve.curvature(kind))))
+    with np.errstate(divide="ignore", over="ignore"):  # a straight vertex (k = 0) sets no limit
+        return float(np.min(_shorter_edges(curve) / np.abs(curve.curvature(kind))))
 
 
 def stable_step(curve, kind, safety=0.25):
     """An explicit time step from the shortest edges, safe for forward Euler.
 
-    The sine flow is a discrete diffusion, ``dv/dt = D v`` with ``D`` a second difference divided by
-    the dual lengths; its stiffest mode decays at rate about ``4 / (h A)`` at an edge of length ``h``.
-    Forward Euler is stable when ``dt`` times that rate stays below 2, so ``dt = h A / 2`` at the worst
-    vertex, divided by ``g_i`` for the faster flows. A vertex must also not travel farther than a
-    fraction of its edges in one step, which matters where ``k`` is huge (near kinks).
+    The sine flow is the heat equation ``dv/dt = Lap v``; the stiffest mode of ``Lap`` decays at
+    rate about ``4 / (h A)`` at an edge of length ``h``. Forward Euler is stable when ``dt`` times
+    that rate stays below 2, so ``dt = h A / 2`` at the worst vertex, divided by ``g_i`` for the
+    faster flows. A vertex must also not travel farther than a fraction of its edges in one step,
+    which matters where ``k`` is huge (near kinks).
     """
-    safety = _real(safety, "safety", 0.0, strict=True)
-    lengths = curve.edge_lengths
-    h = np.minimum(lengths, _previous(lengths))
-    diffusion = np.min(h * curve.dual_lengths / (2 * _speed_factor(curve, kind)))
+    safety = nx.real(safety, "safety", 0.0, strict=True)
+    diffusion = np.min(_shorter_edges(curve) * curve.dual_lengths / (2 * speed_factor(curve, kind)))
     return safety * min(diffusion, _travel_step(curve, kind))
 
 
@@ -112,14 +115,12 @@ def remaining_lifetime(curve, kind):
 def solve_cyclic_tridiagonal(a, b, c, d):
     """Solve ``a_i x_{i-1} + b_i x_i + c_i x_{i+1} = d_i`` for ``i`` mod ``m`` (``d``: shape ``(m, 2)``).
 
-    Cyclic reduction, vectorized. Each pass eliminates the odd-numbered unknowns from the equations
-    of their even-numbered neighbours, which leaves a cyclic tridiagonal system for the even ones,
-    half the size. (When ``m`` is odd, the last and first unknowns are both even and stay coupled
-    directly.) The last small system is solved densely; the odd unknowns are recovered on the way
-    back. That is ``log2 m`` Python-level passes of numpy work over ``m, m/2, m/4, ...`` unknowns:
-    ``O(m)`` time and memory in all, where a dense solve costs ``O(m^3)`` time and ``O(m^2)``
-    memory (and the Thomas algorithm, also ``O(m)``, is a Python loop over the unknowns). Without
-    pivoting, elimination is stable for diagonally dominant systems such as ``I - dt D`` below.
+    Cyclic reduction, vectorized: each pass eliminates the odd-numbered unknowns from the equations
+    of their even-numbered neighbours, which leaves a cyclic tridiagonal system half the size
+    (when ``m`` is odd, the last and first unknowns are both even and stay coupled directly). The
+    last small system is solved densely and the odd unknowns are recovered on the way back: ``log2
+    m`` passes of numpy work, ``O(m)`` time and memory, where a dense solve costs ``O(m^3)``.
+    Without pivoting, elimination is stable for diagonally dominant systems such as ``I - dt G Lap``.
     """
     levels = []
     while len(b) > 4:
@@ -149,42 +150,109 @@ def solve_cyclic_tridiagonal(a, b, c, d):
 
 
 def semi_implicit_step(curve, kind, dt):
-    """Solve ``(I - dt D) v_new = v`` with ``D`` built from the current curve (lengths frozen).
+    """One backward Euler step with the lengths frozen: solve ``(I - dt G Lap) v_new = v``.
 
-    ``(D v)_i = g_i / A_i * ((v_{i+1} - v_i) / |e_{i+1/2}| - (v_i - v_{i-1}) / |e_{i-1/2}|)`` equals
-    ``-k_i N_i`` at the current vertices; treating it implicitly removes the ``h^2`` step limit.
-    ``I - dt D`` is cyclic tridiagonal and diagonally dominant: :func:`solve_cyclic_tridiagonal`.
+    ``(G Lap v)_i = g_i / A_i * ((v_{i+1} - v_i) / |e_{i+1/2}| - (v_i - v_{i-1}) / |e_{i-1/2}|)`` equals
+    ``-k_i N_i`` at the current vertices (``curve.laplacian``, with the speeds ``g_i``); treating it
+    implicitly removes the ``h^2`` step limit. The system is cyclic tridiagonal and diagonally
+    dominant: :func:`solve_cyclic_tridiagonal`.
     """
-    lengths = curve.edge_lengths
-    w_next, w_prev = 1 / lengths, 1 / _previous(lengths)
-    s = dt * _speed_factor(curve, kind) / curve.dual_lengths
+    w_next, w_prev = 1 / curve.edge_lengths, 1 / nx.previous(curve.edge_lengths)
+    s = dt * speed_factor(curve, kind) / curve.dual_lengths
     return solve_cyclic_tridiagonal(-s * w_prev, 1 + s * (w_next + w_prev), -s * w_next, curve.vertices)
 
 
 def remesh(curve):
-    """The same closed polyline with its vertices redistributed evenly in arc length (same ``n``)."""
-    v = np.vstack([curve.vertices, curve.vertices[:1]])
+    """Vertices spread evenly in arc length along the same polyline, as many as before.
+
+    The new vertices lie on the old edges; corners between them are cut, so the length and (for a
+    convex curve) the area can only shrink. An open curve keeps its two ends. A curve that turns
+    straight back, before or after, raises ``ValueError``.
+    """
+    if not isinstance(curve, DiscreteCurve):
+        raise ValueError(f"curve must be a DiscreteCurve, got {type(curve).__name__}")
+    if len(curve._reversals):
+        raise ValueError(_reversal(curve))
+    v = np.vstack([curve.vertices, curve.vertices[:1]]) if curve.closed else curve.vertices
     s = np.concatenate([[0.0], np.cumsum(curve.edge_lengths)])
-    target = curve.length * np.arange(len(curve)) / len(curve)
-    return DiscreteCurve(np.stack([np.interp(target, s, v[:, 0]), np.interp(target, s, v[:, 1])], axis=1))
+    n = len(curve)
+    target = curve.length * np.arange(n) / (n if curve.closed else n - 1)
+    new = DiscreteCurve(np.stack([np.interp(target, s, v[:, 0]), np.interp(target, s, v[:, 1])], axis=1),
+                        closed=curve.closed)
+    if len(new._reversals):
+        raise ValueError(f"remeshing gives a curve that turns straight back at vertex {new._vertex_index(new._reversals[0])}"
+                         " (the polyline nearly does there)")
+    return new
 
 
 def _reversal(curve):
-    return (f"the curve turns straight back at vertex {curve._reversals[0]} (psi = pi): neither its turning "
-            "number nor the tangent curvature is defined there")
+    return (f"the curve turns straight back at vertex {curve._vertex_index(curve._reversals[0])} (psi = pi): neither "
+            "its turning number nor the tangent curvature is defined there")
 
 
-def _count(value, name, minimum):
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
-        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
-    return int(value)
+# ---------------------------------------------------------------------------------- the run
 
 
-def _fraction(value, name):
-    value = _real(value, name, 0.0)
-    if value >= 1:
-        raise ValueError(f"{name} must be a fraction in [0, 1), got {value!r}")
-    return value
+@dataclass(frozen=True)
+class Settings:
+    """A run's settings, checked (see :func:`flow` for their meaning)."""
+
+    kind: str
+    method: str
+    t_end: float
+    dt: float | None
+    safety: float
+    lifetime_fraction: float
+    snapshots: int
+    record_every: float | None
+    stop_length_fraction: float
+    stop_edge_fraction: float
+    remesh_every: int | None
+    max_steps: int
+    max_seconds: float
+    progress: bool
+
+    def __post_init__(self):
+        nx.choose(self.kind, CURVATURES, "curvature kind")
+        nx.choose(self.method, METHODS, "method")
+        for name in ("t_end", "dt", "safety", "lifetime_fraction", "record_every", "max_seconds"):
+            if getattr(self, name) is not None or name not in ("dt", "record_every"):
+                nx.real(getattr(self, name), name, 0.0, strict=True)
+        for name in ("stop_length_fraction", "stop_edge_fraction"):
+            if nx.real(getattr(self, name), name, 0.0) >= 1:
+                raise ValueError(f"{name} must be a fraction in [0, 1), got {getattr(self, name)!r}")
+        nx.count(self.snapshots, "snapshots", 0)
+        nx.count(self.max_steps, "max_steps", 1)
+        if self.remesh_every is not None:
+            nx.count(self.remesh_every, "remesh_every", 1)
+        nx.flag(self.progress, "progress")
+
+
+class _Frame:
+    """Coordinates relative to the curve: ``local = (v - origin) / scale``, time ``t / scale**2``.
+
+    The flow commutes with translations and with scaling (``v -> s v``, ``t -> s**2 t``), so it is
+    run near the origin at a size of about 1, where every move, however small against the curve's
+    position in the plane, is kept, and no area or step under- or overflows. ``scale`` is a power of
+    two, so scaling back is exact.
+    """
+
+    def __init__(self, curve):
+        self.origin = curve.vertices[0].copy()
+        self.exponent = int(np.frexp(curve.length)[1])
+        self.scale = float(np.ldexp(1.0, self.exponent))
+
+    def local(self, curve):
+        return DiscreteCurve(np.ldexp(curve.vertices - self.origin, -self.exponent))
+
+    def curve(self, local):
+        return DiscreteCurve(np.ldexp(local.vertices, self.exponent) + self.origin)
+
+    def time(self, local_time):
+        return float(np.ldexp(local_time, 2 * self.exponent))
+
+    def local_time(self, t):
+        return float(np.ldexp(t, -2 * self.exponent))
 
 
 def flow(curve, kind="sine", t_end=1.0, *, method="explicit", dt=None, safety=0.25, lifetime_fraction=0.02,
@@ -194,11 +262,11 @@ def flow(curve, kind="sine", t_end=1.0, *, method="explicit", dt=None, safety=0.
 
     Parameters
     ----------
-    curve : DiscreteCurve (closed)
+    curve : DiscreteCurve (closed, not turning straight back anywhere)
     kind : one of ``ddg.CURVATURES``, the curvature that sets the speed.
-    t_end : float, the time to stop at.
+    t_end : float, the time to stop at (it may lie beyond the curve's life: the run stops first).
     method : ``"explicit"`` (forward Euler, the step from :func:`stable_step` at every step) or
-        ``"semi-implicit"`` (a linear solve per step, stable at any step; the step is the one in
+        ``"semi-implicit"`` (:func:`semi_implicit_step`, stable at any step; the step is the one in
         which a vertex moves ``safety`` of its shorter edge).
     dt : float, optional fixed step instead of the automatic one, checked neither for stability nor
         for accuracy (use with care), only kept below half the remaining lifetime.
@@ -206,122 +274,161 @@ def flow(curve, kind="sine", t_end=1.0, *, method="explicit", dt=None, safety=0.
         a vertex may travel in one step (semi-implicit).
     lifetime_fraction : float
         Accuracy: no automatic step is longer than this fraction of the curve's remaining
-        lifetime (:func:`remaining_lifetime`). Both methods are first order: on a regular polygon,
-        where the lifetime rule sets the step, the area comes out too large by
-        ``c * lifetime_fraction`` times the area lost, ``c = 1/4`` (explicit) or ``3/4``
-        (semi-implicit): 0.5% or 1.5% at the default. A curve that would vanish before ``t_end``
-        is approached in ever shorter steps and the run stops, saying so.
-    snapshots : int, curves kept for drawing, evenly spaced in time.
-    record_every : float, time between records (default ``t_end / 400``).
+        lifetime (:func:`remaining_lifetime`). Both methods are first order: on a regular polygon
+        the area comes out too large by ``c * lifetime_fraction`` times the area lost, ``c = 1/4``
+        (explicit) or ``3/4`` (semi-implicit): 0.5% or 1.5% at the default.
+    snapshots : int, curves kept for drawing, evenly spaced over the run's expected span (the
+        shorter of ``t_end`` and the curve's estimated lifetime), and the last state.
+    record_every : float, time between records (default: a 400th of that span).
     stop_length_fraction, stop_edge_fraction :
         Stop cleanly, before the polygon degenerates, once its length falls below this fraction of
         the initial length (the curve has nearly vanished), or its shortest edge below this
         fraction of the mean edge.
-    remesh_every : int, optional
-        Redistribute the vertices evenly in arc length every so many steps (:func:`remesh`). This
-        adds tangential motion, which keeps vertices from bunching at sharp corners; the sine flow
-        is then no longer exactly the gradient flow of length. Off by default.
+    remesh_every : int, optional: :func:`remesh` every so many steps (tangential motion that keeps
+        vertices from bunching; the sine flow is then no longer exactly the gradient flow).
     max_steps, max_seconds : the run's budget; it stops, saying so, when either is spent.
-    progress : bool, show a progress bar when a run takes more than a second (needs ``tqdm``;
-        without it the run is the same, with no bar).
+    progress : bool, show a progress bar when a run takes more than a second (needs ``tqdm``).
+
+    The run is computed in coordinates relative to the curve (its first vertex, at its own scale),
+    so a curve far from the origin, or at any scale, flows as it would near the origin at size 1.
 
     Returns
     -------
     FlowRun with the recorded times, lengths, areas, turning numbers (the first and the last state
     always among them), snapshots and ``stopped``: ``"reached t_end"``, or why it stopped earlier.
     """
-    _choose(kind, CURVATURES, "curvature kind")
-    _choose(method, METHODS, "method")
+    settings = Settings(kind, method, t_end, dt, safety, lifetime_fraction, snapshots, record_every,
+                        stop_length_fraction, stop_edge_fraction, remesh_every, max_steps, max_seconds, progress)
     if not isinstance(curve, DiscreteCurve):
         raise ValueError(f"curve must be a DiscreteCurve, got {type(curve).__name__}")
     if not curve.closed:
         raise ValueError("curve-shortening flow is defined here for closed curves only; this curve is open")
     if len(curve._reversals):
         raise ValueError(_reversal(curve))
-    t_end = _real(t_end, "t_end", 0.0, strict=True)
-    dt = None if dt is None else _real(dt, "dt", 0.0, strict=True)
-    safety = _real(safety, "safety", 0.0, strict=True)
-    lifetime_fraction = _real(lifetime_fraction, "lifetime_fraction", 0.0, strict=True)
-    record_every = t_end / 400 if record_every is None else _real(record_every, "record_every", 0.0, strict=True)
-    snapshots, max_steps = _count(snapshots, "snapshots", 0), _count(max_steps, "max_steps", 1)
-    remesh_every = None if remesh_every is None else _count(remesh_every, "remesh_every", 1)
-    max_seconds = _real(max_seconds, "max_seconds", 0.0, strict=True)
-    stop_length_fraction = _fraction(stop_length_fraction, "stop_length_fraction")
-    stop_edge_fraction = _fraction(stop_edge_fraction, "stop_edge_fraction")
+    frame = _Frame(curve)
+    start = frame.local(curve)
+    end = frame.local_time(float(t_end))
+    lifetime = remaining_lifetime(start, kind)
+    degenerate = not 0 < lifetime < np.inf  # at the curve's own scale: a collapsed curve
+    if not degenerate and not 0 < frame.time(lifetime) < np.inf:
+        power = np.log10(lifetime) + 2 * frame.exponent * np.log10(2)
+        raise ValueError(f"the curve's lifetime under the flow, about 1e{power:.0f}, is beyond the range of floats: "
+                         "scale the curve (times scale with the square of its size)")
+    run = _Run(settings, frame, start, end, end if degenerate else min(end, lifetime))
+    if degenerate:
+        run.record()
+        run.stopped = "stopped at t = 0: the curve is degenerate (its remaining lifetime is 0 to rounding)"
+    else:
+        run.go()
+    return run.result()
 
-    L0, n, number = curve.length, len(curve), curve.turning_number
-    snapshot_times = list(np.linspace(0, t_end, snapshots)) if snapshots else []
-    times, lengths, areas, turnings, kept = [], [], [], [], []
-    t, steps, stopped, next_record = 0.0, 0, "reached t_end", 0.0
-    near = 1e-9 * t_end  # times this close count as equal: relative to the run's time scale
 
-    def record(t, curve):
-        times.append(t), lengths.append(curve.length), areas.append(curve.signed_area)
-        turnings.append(curve.turning_number)
+class _Run:
+    """The state of one run: its step, its stop rule and its record, in local coordinates."""
 
-    bar = None
-    if progress and tqdm is not None:
-        bar = tqdm(total=t_end, delay=1.0, unit="time", desc=f"{kind} flow", leave=False,
-                   bar_format="{l_bar}{bar}| t = {n:.3g} of {total:.3g} [{elapsed}<{remaining}]")
-    start = time.perf_counter()
-    while True:
-        if t >= next_record - near or t == t_end:
-            record(t, curve)
-            next_record = t + record_every
-        while snapshot_times and t >= snapshot_times[0] - near:
-            kept.append((t, curve))
-            snapshot_times.pop(0)
-        if t == t_end:
-            break
-        if steps >= max_steps:
-            stopped = f"stopped at t = {t:.4g} after max_steps = {max_steps} steps"
-            break
-        if time.perf_counter() - start > max_seconds:
-            stopped = f"stopped at t = {t:.4g} after max_seconds = {max_seconds:g} seconds ({steps} steps)"
-            break
-        if curve.length < stop_length_fraction * L0:
-            stopped = (f"stopped at t = {t:.4g}: the curve has nearly vanished (its length fell below "
-                       f"{stop_length_fraction:g} of the initial length)")
-            break
-        if curve.edge_lengths.min() < stop_edge_fraction * curve.length / n:
-            stopped = f"stopped at t = {t:.4g}: an edge fell below {stop_edge_fraction:g} of the mean edge (vertices bunch up)"
-            break
-        try:
-            if dt is not None:  # the user's step: only kept from jumping past the curve's end
-                step = min(dt, 0.5 * remaining_lifetime(curve, kind))
-            else:
-                step = stable_step(curve, kind, safety) if method == "explicit" else safety * _travel_step(curve, kind)
-                step = min(step, lifetime_fraction * remaining_lifetime(curve, kind))
-            if step < 1e-12 * t_end:
-                stopped = (f"stopped at t = {t:.4g}: the step fell below 1e-12 of t_end "
-                           "(the curve is about to vanish or degenerate)")
+    def __init__(self, settings, frame, curve, end, span):
+        self.settings, self.frame, self.curve, self.end, self.span = settings, frame, curve, end, span
+        self.t, self.steps, self.stopped = 0.0, 0, "reached t_end"
+        self.length0, self.number = curve.length, curve.turning_number
+        every = frame.local_time(settings.record_every) if settings.record_every else span / 400
+        self.every, self.next_record, self.records, self.kept = every, 0.0, [], []
+        self.snapshot_times, self.next_snapshot = np.linspace(0, span, settings.snapshots), 0
+        self.dt = None if settings.dt is None else frame.local_time(settings.dt)
+        self.seconds = 0.0
+
+    def record(self):
+        """Keep the state when it is due (and the snapshots whose times have come)."""
+        if self.t >= self.next_record * (1 - 1e-12) or self.t == self.end:
+            self.records.append((self.t, self.curve.length, self.curve.signed_area, self.curve.turning_number))
+            self.next_record = self.t + self.every
+        due = np.searchsorted(self.snapshot_times, self.t * (1 + 1e-12), side="right")
+        if due > self.next_snapshot:
+            self.kept.append((self.t, self.curve))
+            self.next_snapshot = due
+
+    def stop_reason(self, started):
+        """Why the run must stop now, or ``""``."""
+        s, t = self.settings, self.frame.time(self.t)
+        if self.t >= self.end:
+            return "reached t_end"
+        if self.steps >= s.max_steps:
+            return f"stopped at t = {t:.4g} after max_steps = {s.max_steps} steps"
+        if time.perf_counter() - started > s.max_seconds:
+            return f"stopped at t = {t:.4g} after max_seconds = {s.max_seconds:g} seconds ({self.steps} steps)"
+        if self.curve.length < s.stop_length_fraction * self.length0:
+            return (f"stopped at t = {t:.4g}: the curve has nearly vanished (its length fell below "
+                    f"{s.stop_length_fraction:g} of the initial length)")
+        if self.curve.edge_lengths.min() < s.stop_edge_fraction * self.curve.length / len(self.curve):
+            return f"stopped at t = {t:.4g}: an edge fell below {s.stop_edge_fraction:g} of the mean edge (vertices bunch up)"
+        return ""
+
+    def step_size(self):
+        """The next step: the user's, or the stable one capped by the remaining lifetime."""
+        s, kind = self.settings, self.settings.kind
+        if self.dt is not None:  # the user's step, only kept from jumping past the curve's end
+            return min(self.dt, 0.5 * remaining_lifetime(self.curve, kind), self.end - self.t)
+        if s.method == "explicit":
+            step = stable_step(self.curve, kind, s.safety)
+        else:
+            step = s.safety * _travel_step(self.curve, kind)
+        step = min(step, s.lifetime_fraction * remaining_lifetime(self.curve, kind))
+        if not step > 1e-12 * self.span:  # (a step of 0, or NaN, included)
+            raise _Stop(f"the step fell below 1e-12 of the curve's expected lifetime "
+                        f"({self.frame.time(self.span):.3g}): the curve is about to vanish or degenerate")
+        return min(step, self.end - self.t)
+
+    def advance(self, step):
+        """One step of the flow: the new curve, or a reason to stop."""
+        s = self.settings
+        if s.method == "explicit":
+            new = self.curve.vertices + step * velocity(self.curve, s.kind)
+        else:
+            new = semi_implicit_step(self.curve, s.kind, step)
+        new = DiscreteCurve(new)
+        if s.remesh_every and (self.steps + 1) % s.remesh_every == 0:
+            new = remesh(new)
+        if len(new._reversals):
+            raise _Stop(_reversal(new))
+        if new.turning_number != self.number:
+            raise _Stop("the turning number changed (the step was too large)")
+        return new
+
+    def go(self):
+        s, started = self.settings, time.perf_counter()
+        bar = None
+        if s.progress and tqdm is not None:
+            bar = tqdm(total=self.frame.time(self.span), delay=1.0, unit="time", desc=f"{s.kind} flow", leave=False,
+                       bar_format="{l_bar}{bar}| t = {n:.3g} of {total:.3g} [{elapsed}<{remaining}]")
+        while True:
+            self.record()
+            self.stopped = self.stop_reason(started)
+            if self.stopped:
                 break
-            last = step >= t_end - t
-            step = min(step, t_end - t)
-            if method == "explicit":
-                new = curve.vertices + step * velocity(curve, kind)
-            else:
-                new = semi_implicit_step(curve, kind, step)
-            new = DiscreteCurve(new)
-            if remesh_every and (steps + 1) % remesh_every == 0:
-                new = remesh(new)
-            if len(new._reversals):
-                raise ValueError(_reversal(new))
-            changed = new.turning_number != number
-        except ValueError as problem:  # a vertex hit its neighbour, or the tangent curvature diverged
-            stopped = f"stopped at t = {t:.4g}: {problem}"
-            break
-        if changed:
-            stopped = f"stopped at t = {t:.4g}: the turning number changed (the step was too large)"
-            break
-        curve, t, steps = new, t_end if last else t + step, steps + 1
+            try:
+                step = self.step_size()
+                new = self.advance(step)
+            except (_Stop, ValueError) as problem:  # ValueError: a vertex hit its neighbour, k overflowed
+                self.stopped = f"stopped at t = {self.frame.time(self.t):.4g}: {problem}"
+                break
+            last = step >= self.end - self.t
+            self.curve, self.t, self.steps = new, self.end if last else self.t + step, self.steps + 1
+            if bar is not None:
+                bar.update(min(self.frame.time(step), max(0.0, bar.total - bar.n)))
         if bar is not None:
-            bar.update(step)
-    if bar is not None:
-        bar.close()
-    if times[-1] != t:  # the final state is always recorded
-        record(t, curve)
-    if not kept or kept[-1][1] is not curve:
-        kept.append((t, curve))
-    return FlowRun(kind, method, np.array(times), np.array(lengths), np.array(areas), np.array(turnings, dtype=int),
-                   kept, stopped, steps, time.perf_counter() - start)
+            bar.close()
+        self.seconds = time.perf_counter() - started
+
+    def result(self):
+        if self.records[-1][0] != self.t:  # the final state is always recorded
+            self.records.append((self.t, self.curve.length, self.curve.signed_area, self.curve.turning_number))
+        if not self.kept or self.kept[-1][1] is not self.curve:
+            self.kept.append((self.t, self.curve))
+        f = self.frame
+        t, lengths, areas, numbers = (np.array(column) for column in zip(*self.records))
+        return FlowRun(self.settings.kind, self.settings.method, np.ldexp(t, 2 * f.exponent),
+                       np.ldexp(lengths, f.exponent), np.ldexp(areas, 2 * f.exponent), numbers.astype(int),
+                       [(f.time(t), f.curve(c)) for t, c in self.kept], self.stopped, self.steps, self.seconds)
+
+
+class _Stop(Exception):
+    """A reason to stop the run, said in words."""

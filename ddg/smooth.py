@@ -12,7 +12,8 @@ from functools import cached_property
 
 import numpy as np
 
-from .curve import DiscreteCurve, _real
+from . import _numerics as nx
+from .curve import DiscreteCurve
 
 # Gauss-Legendre rule on [0, 1], 8 nodes: exact for polynomials of degree 15.
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(8)
@@ -47,6 +48,7 @@ def _adaptive(f, t0, t1, cells=1024, max_levels=60, max_cells=10**5):
     """
     a = np.linspace(t0, t1, cells + 1)
     a, b = a[:-1], a[1:]
+    why = f"it needs more than {max_levels} halvings"
     whole, _ = _gauss(f, a, b)
     done, done_abs = [], 0.0
     for _ in range(max_levels):
@@ -54,6 +56,7 @@ def _adaptive(f, t0, t1, cells=1024, max_levels=60, max_cells=10**5):
         (left, left_abs), (right, right_abs) = _gauss(f, a, m), _gauss(f, m, b)
         if not np.isfinite(left_abs + right_abs).all():
             worst = a[~np.isfinite(left_abs + right_abs)][0]
+            why = "the integrand is not finite there (is the curve regular, |gamma'| > 0?)"
             break
         error, tolerance = np.abs(whole - left - right), RTOL * (done_abs + np.sum(left_abs + right_abs))
         ok = error <= np.maximum(tolerance * (b - a) / (t1 - t0), 64 * _EPS * (left_abs + right_abs))  # or rounding
@@ -67,11 +70,16 @@ def _adaptive(f, t0, t1, cells=1024, max_levels=60, max_cells=10**5):
             return a[order], b[order], I[order]
         worst = a[~ok][np.argmax(error[~ok])]
         a, m, b = a[~ok], m[~ok], b[~ok]
-        if len(a) > max_cells / 2 or np.any(b - a < 1024 * np.spacing(np.maximum(abs(a), abs(b)))):
-            break  # too many cells, or cells so narrow that the rounding of t spoils f
+        why = (f"it needs more than {max_cells} cells: the integrand has a feature too narrow or too steep there "
+               "(the tip of a very eccentric ellipse, say), or a kink")
+        if len(a) > max_cells / 2:
+            break
+        if np.any(b - a < 1024 * np.spacing(np.maximum(abs(a), abs(b)))):
+            why = ("the integrand changes on a scale finer than the rounding of the parameter t allows (as at "
+                   "the tip of a very eccentric ellipse); parametrize the curve so that t moves faster there")
+            break
         a, b, whole = np.concatenate([a, m]), np.concatenate([m, b]), np.concatenate([left[~ok], right[~ok]])
-    raise ValueError(f"the quadrature did not converge near t = {worst:.6g}: is the curve regular "
-                     "(|gamma'| > 0) with continuous derivatives there?")
+    raise ValueError(f"the quadrature did not converge near t = {worst:.6g}: {why}")
 
 
 def _points(f, t):
@@ -101,30 +109,38 @@ class SmoothCurve:
     """
 
     def __init__(self, position, velocity, acceleration, t0=0.0, t1=2 * np.pi, closed=True, name="curve"):
-        t0, t1 = _real(t0, "t0"), _real(t1, "t1")
+        t0, t1 = nx.real(t0, "t0"), nx.real(t1, "t1")
         if not t1 > t0:
             raise ValueError(f"need t1 > t0, got t0={t0!r}, t1={t1!r}")
-        if not isinstance(closed, (bool, np.bool_)):
-            raise ValueError(f"closed must be True or False, got {closed!r}")
+        closed = nx.flag(closed, "closed")
         self.gamma, self.dgamma, self.ddgamma = position, velocity, acceleration  # the callables given
         self.t0, self.t1, self.closed, self.name = float(t0), float(t1), bool(closed), name
 
     def __repr__(self):
         return f"SmoothCurve({self.name!r}, t in [{self.t0:.6g}, {self.t1:.6g}], length={self.length:.6g})"
 
+    def _parameters(self, t):
+        """``t`` as an array of parameters in ``[t0, t1]``, or a ``ValueError`` saying which is not."""
+        t = np.asarray(t, dtype=float)
+        outside = ~((self.t0 <= t) & (t <= self.t1))
+        if outside.any():
+            raise ValueError(f"t must lie in [{self.t0:.6g}, {self.t1:.6g}], the curve's parameter interval; got "
+                             f"{t[outside].flat[0]!r}")
+        return t
+
     def position(self, t):
         """``gamma(t)``, shape ``t.shape + (2,)``."""
         return _points(self.gamma, t)
 
     def speed(self, t):
-        """``|gamma'(t)|``."""
+        """``|gamma'(t)|`` (without under- or overflow at any scale)."""
         d = _points(self.dgamma, t)
-        return np.sqrt(d[..., 0] ** 2 + d[..., 1] ** 2)
+        return np.hypot(d[..., 0], d[..., 1])
 
     def tangent(self, t):
         """Unit tangent ``T = gamma' / |gamma'|``."""
         d = _points(self.dgamma, t)
-        return d / np.sqrt(d[..., 0] ** 2 + d[..., 1] ** 2)[..., None]
+        return d / np.hypot(d[..., 0], d[..., 1])[..., None]
 
     def normal(self, t):
         """Normal ``N = J T`` (``J`` rotates by +90 degrees): outward on a clockwise circle."""
@@ -137,8 +153,9 @@ class SmoothCurve:
         Positive where the curve turns clockwise: ``+1/r`` on a clockwise circle.
         """
         d, dd = _points(self.dgamma, t), _points(self.ddgamma, t)
-        cross = d[..., 0] * dd[..., 1] - d[..., 1] * dd[..., 0]
-        return -cross / (d[..., 0] ** 2 + d[..., 1] ** 2) ** 1.5
+        speed = np.hypot(d[..., 0], d[..., 1])
+        T = d / speed[..., None]  # the same formula, arranged not to under- or overflow at any scale
+        return -((T[..., 0] * dd[..., 1] - T[..., 1] * dd[..., 0]) / speed) / speed
 
     # ---------------------------------------------------------------------- arc length
 
@@ -152,8 +169,8 @@ class SmoothCurve:
         return _gauss(self.speed, a, b)[0]
 
     def arc_length(self, t):
-        """``s(t) = int_{t0}^{t} |gamma'|``: arc length from the start to parameter ``t``."""
-        t = np.asarray(t, dtype=float)
+        """``s(t) = int_{t0}^{t} |gamma'|``: arc length from the start to parameter ``t`` in ``[t0, t1]``."""
+        t = self._parameters(t)
         grid, s = self._grid
         cell = np.clip(np.searchsorted(grid, t, side="right") - 1, 0, len(grid) - 2)
         return s[cell] + self._integrate_speed(grid[cell], t)
@@ -164,8 +181,11 @@ class SmoothCurve:
         return float(self._grid[1][-1])
 
     def parameter_at(self, s):
-        """The parameter ``t`` with ``arc_length(t) = s`` (inverse of :meth:`arc_length`)."""
+        """The parameter ``t`` with ``arc_length(t) = s``, for ``s`` in ``[0, length]`` (inverse of :meth:`arc_length`)."""
         s = np.asarray(s, dtype=float)
+        outside = ~((0 <= s) & (s <= self.length))
+        if outside.any():
+            raise ValueError(f"s must lie in [0, {self.length:.6g}], the curve's length; got {s[outside].flat[0]!r}")
         grid, S = self._grid
         t = np.interp(s, S, grid)
         for _ in range(4):  # Newton's method: ds/dt = |gamma'|
@@ -207,7 +227,7 @@ class SmoothCurve:
 
 def circle(radius=1.0, center=(0.0, 0.0), clockwise=True):
     """The circle ``center + r (cos t, -sin t)`` (clockwise) or ``(cos t, sin t)``: curvature ``+-1/r``."""
-    radius = _real(radius, "radius", 0.0, strict=True)
+    radius = nx.real(radius, "radius", 0.0, strict=True)
     return ellipse(radius, radius, center, clockwise, name=f"circle r={radius:g}")
 
 
@@ -216,16 +236,25 @@ def ellipse(a=2.0, b=1.0, center=(0.0, 0.0), clockwise=True, name=None):
 
     Clockwise, its curvature is ``kappa(t) = a b / (a^2 sin^2 t + b^2 cos^2 t)^(3/2)``.
     """
-    if not (_real(a, "a") > 0 and _real(b, "b") > 0):
-        raise ValueError(f"semi-axes must be positive, got a={a!r}, b={b!r}")
-    cx, cy = center
-    s = -1.0 if clockwise else 1.0
+    a, b = nx.real(a, "a", 0.0, strict=True), nx.real(b, "b", 0.0, strict=True)
+    cx, cy = _point(center, "center")
+    s = -1.0 if nx.flag(clockwise, "clockwise") else 1.0
     return SmoothCurve(
         lambda t: (cx + a * np.cos(t), cy + s * b * np.sin(t)),
         lambda t: (-a * np.sin(t), s * b * np.cos(t)),
         lambda t: (-a * np.cos(t), -s * b * np.sin(t)),
         name=name or f"ellipse a={a:g}, b={b:g}",
     )
+
+
+def _point(value, name):
+    """``value`` as a finite point ``(x, y)``, or a ``ValueError``."""
+    if np.iscomplexobj(value) or np.shape(value) != (2,):
+        raise ValueError(f"{name} must be a point (x, y), got {value!r}")
+    point = np.asarray(value, dtype=float)
+    if not np.isfinite(point).all():
+        raise ValueError(f"{name} must be a finite point (x, y), got {value!r}")
+    return point
 
 
 def parametric(position, velocity, acceleration, t0=0.0, t1=2 * np.pi, closed=True, name="curve"):
@@ -254,12 +283,17 @@ def from_curvature(kappa, length, samples=20001, start=(0.0, 0.0), direction=0.0
     -------
     s, points : arrays of shape ``(samples,)`` and ``(samples, 2)``
     """
+    length = nx.real(length, "length", 0.0, strict=True)
+    samples = nx.count(samples, "samples", 2)
+    start, direction = _point(start, "start"), nx.real(direction, "direction")
     s = np.linspace(0.0, length, samples)
     k = np.broadcast_to(np.asarray(kappa(s), dtype=float), s.shape)
+    if not np.isfinite(k).all():
+        raise ValueError(f"kappa is not finite at s = {s[~np.isfinite(k)][0]:.6g}")
     theta = direction - np.concatenate([[0.0], np.cumsum((k[1:] + k[:-1]) / 2 * np.diff(s))])
     T = np.stack([np.cos(theta), np.sin(theta)], axis=1)
     steps = (T[1:] + T[:-1]) / 2 * np.diff(s)[:, None]
-    return s, np.asarray(start, dtype=float) + np.concatenate([[[0.0, 0.0]], np.cumsum(steps, axis=0)])
+    return s, start + np.concatenate([[[0.0, 0.0]], np.cumsum(steps, axis=0)])
 
 
 def polar(r, dr, ddr, clockwise=True, name="polar curve"):
@@ -267,7 +301,7 @@ def polar(r, dr, ddr, clockwise=True, name="polar curve"):
 
     With ``clockwise=True`` (default) the curve is traversed clockwise, as the lecture prefers.
     """
-    sign = -1.0 if clockwise else 1.0
+    sign = -1.0 if nx.flag(clockwise, "clockwise") else 1.0
     c, s = np.cos, np.sin
     return SmoothCurve(
         lambda t: (r(t) * c(t), sign * r(t) * s(t)),

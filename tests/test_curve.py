@@ -63,8 +63,9 @@ def test_turning_angle_range_includes_pi_excludes_minus_pi():
     assert spike.curvature("sine")[1] == pytest.approx(2 / spike.dual_lengths[1])
     with pytest.raises(ValueError, match="diverges at vertex 1"):
         spike.curvature("tangent")
+    clockwise_spike = ddg.DiscreteCurve(spike.vertices * [1, -1])  # mirrored: clockwise, same reversal
     with pytest.raises(ValueError, match="vertex 1"):
-        spike.inflate(0.1, "offset")
+        clockwise_spike.inflate(0.1, "offset")
 
 
 # ---------------------------------------------------------------- random polygons (hypothesis)
@@ -229,12 +230,15 @@ def test_inflated_boundary_area_matches_formula_on_convex_curves(method, seed):
         assert boundary.turning_number == 1
 
 
-def test_inflation_of_counter_clockwise_curve_is_signed():
-    ccw = ddg.regular_polygon(50, 1.0, clockwise=False)
-    # N points inward: the signed area -pi r^2 moves toward zero, as the formula says
+def test_inflating_a_counter_clockwise_curve_is_refused_as_erosion():
+    ccw = ddg.regular_polygon(7, clockwise=False)  # N points inward: inflating it would erode it
     for method in ddg.INFLATIONS:
-        assert ccw.inflate(0.1, method).signed_area == pytest.approx(ccw.inflated_area(0.1, method), rel=1e-4)
-    assert ccw.inflated_area(0.1, "minkowski") > ccw.signed_area
+        for call in (ccw.inflated_area, ccw.inflate):
+            with pytest.raises(ValueError, match="counter-clockwise.*reverse it"):
+                call(2.0, method)
+        assert ccw.inflated_area(0.0, method) == ccw.signed_area  # eps = 0 moves nothing
+    cw = ddg.DiscreteCurve(ccw.vertices[::-1])
+    assert cw.inflated_area(2.0) > cw.signed_area > 0
 
 
 # ---------------------------------------------------------------- inner product and open curves

@@ -393,7 +393,8 @@ def test_hostile_polygons_have_exact_lengths_angles_and_curvatures(polygon):
     if c is None:
         return
     psi, t, lengths = exact_geometry(v)
-    event(f"scale 2^{round(k, -2)}: {'squares safe' if c._edge_buffers[3] else 'extreme, the hypot path'}")
+    safe = 1e-150 < c.edge_lengths.min() and c.edge_lengths.max() < 1e150
+    event(f"scale 2^{round(k, -2)}: {'squares safe' if safe else 'extreme, the hypot path'}")
     event("within rounding of a reversal" if np.any(np.abs(t) > 1 / (16 * EPS)) else "no reversal")
     close(np.ldexp(c.edge_lengths, -k), lengths, 2 * EPS * lengths)
     # within rounding of a reversal (|tan(psi/2)| > 1/EPS) psi = pi and psi = -pi + tiny are the same turn
@@ -448,6 +449,10 @@ def test_hostile_polygons_inflate_to_their_formula(polygon, relative_eps, method
     if eps == 0:
         assert c.inflate(eps, method) is c and c.inflated_area(eps, method) == c.signed_area
         return
+    if c.signed_area < 0:  # counter-clockwise: inflating it would erode it
+        with pytest.raises(ValueError, match="counter-clockwise"):
+            c.inflate(eps, method)
+        return
     if method == "offset" and len(c._reversals):
         with pytest.raises(ValueError, match=f"vertex {c._reversals[0]}"):
             c.inflate(eps, method)
@@ -487,7 +492,11 @@ def test_hostile_polygons_flow_or_stop_with_a_reason(polygon, kind, method):
         with pytest.raises(ValueError, match=f"turns straight back at vertex {c._reversals[0]}"):
             flow(c, kind, t_end, method=method, progress=False)
         return
-    run = flow(c, kind, t_end, method=method, max_steps=20, snapshots=3, progress=False)
+    try:
+        run = flow(c, kind, t_end, method=method, max_steps=20, snapshots=3, progress=False)
+    except ValueError as problem:  # only a life too short (or long) for floats is refused
+        assert "beyond the range of floats" in str(problem), problem
+        return
     assert isinstance(run, FlowRun) and run.stopped
     assert "NaN" not in run.stopped and "nan" not in run.stopped
     assert np.isfinite(run.times).all() and np.isfinite(run.lengths).all() and np.isfinite(run.areas).all()

@@ -76,7 +76,7 @@ def test_discrete_curvature_converges_to_smooth_on_ellipse():
 def test_bad_arguments():
     with pytest.raises(ValueError, match="radius must be positive"):
         smooth.circle(0)
-    with pytest.raises(ValueError, match="semi-axes must be positive"):
+    with pytest.raises(ValueError, match="must be positive"):
         smooth.ellipse(1, -1)
     with pytest.raises(ValueError, match="'parameter' or 'arclength'"):
         smooth.circle().sample(10, "angle")
