@@ -111,7 +111,7 @@ student: $(ENV) $(VENDOR) $(KERNEL)
 	rm -rf $$kept; \
 	if [ -z "$(FRESH)" ] && [ -d $$cache ] && [ "$$(cat _build/student/_build/.inputs 2>/dev/null)" = "$$inputs" ]; then \
 		mv $$cache $$kept; fi; \
-	$(PY) -m ddg.edition --out _build/student --vendor $(VENV)/vendor $(if $(FORCE),--force) \
+	$(PY) -m instructor.edition --out _build/student --vendor $(VENV)/vendor $(if $(FORCE),--force) \
 		$(if $(STUDENT_REPO),--student-repo $(STUDENT_REPO)) || \
 		{ status=$$?; if [ -d $$kept ]; then mkdir -p _build/student/_build && mv $$kept $$cache; fi; exit $$status; }; \
 	mkdir -p _build/student/_build && echo "$$inputs" > _build/student/_build/.inputs; \
@@ -160,7 +160,7 @@ repo: $(ENV)
 # Everything built; the student edition too, unless a notebook there was changed since `make
 # student` wrote it (a student's answers): then it refuses, unless FORCE=1.
 clean:
-	@if [ -x $(PY) ]; then $(PY) -m ddg.edition --check-unchanged _build/student/book $(if $(FORCE),--force); \
+	@if [ -x $(PY) ]; then $(PY) -m instructor.edition --check-unchanged _build/student/book $(if $(FORCE),--force); \
 	elif [ -d _build/student/book ] && [ -z "$(FORCE)" ]; then \
 		echo "error: cannot check _build/student/book for students' changes without $(VENV); use FORCE=1" >&2; exit 1; fi
 	rm -rf _build dist

@@ -19,10 +19,10 @@ from .curve import CURVATURES, INFLATIONS, DiscreteCurve, regular_polygon
 __all__ = ["CURVATURES", "INFLATIONS", "DiscreteCurve", "regular_polygon", "flow", "smooth"]
 __version__ = "0.1.0"
 
-# The geometry above needs numpy only. These parts need more (matplotlib, ipywidgets, shapely,
-# nbformat): each is imported on first use, so `import ddg` works without them, and a missing
+# The geometry above needs numpy only. These parts need more (matplotlib, ipywidgets, shapely):
+# each is imported on first use, so `import ddg` works without them, and a missing
 # dependency is an ImportError that names the extra to install (ddg/_extras.py).
-_OPTIONAL = ("plot", "explore", "checks", "edition", "grade")
+_OPTIONAL = ("plot", "explore", "checks")
 
 
 def __getattr__(name):

@@ -128,6 +128,23 @@ class SmoothCurve:
                              f"{t[outside].flat[0]!r}")
         return t
 
+    def moved(self, matrix=((1.0, 0.0), (0.0, 1.0)), shift=(0.0, 0.0), name=None):
+        """The curve ``x -> M x + b``: moved, turned, mirrored or scaled; its derivatives are ``M gamma'``
+        and ``M gamma''``. (A mirror reverses the sense of turning, so it flips the curvature's sign.)"""
+        M = np.asarray(matrix, dtype=float)
+        if M.shape != (2, 2) or not np.isfinite(M).all():
+            raise ValueError(f"matrix must be a finite 2 x 2 matrix, got {matrix!r}")
+        b = _point(shift, "shift")
+
+        def mapped(f, offset):
+            def g(t):
+                x, y = f(t)
+                return M[0, 0] * x + M[0, 1] * y + offset[0], M[1, 0] * x + M[1, 1] * y + offset[1]
+            return g
+
+        return SmoothCurve(mapped(self.gamma, b), mapped(self.dgamma, (0.0, 0.0)), mapped(self.ddgamma, (0.0, 0.0)),
+                           self.t0, self.t1, self.closed, name or self.name)
+
     def position(self, t):
         """``gamma(t)``, shape ``t.shape + (2,)``."""
         return _points(self.gamma, t)
@@ -310,3 +327,11 @@ def polar(r, dr, ddr, clockwise=True, name="polar curve"):
                    sign * (ddr(t) * s(t) + 2 * dr(t) * c(t) - r(t) * s(t))),
         name=name,
     )
+
+
+def flower(amplitude, petals, clockwise=True, name=None):
+    """The closed curve ``r(t) = 1 + amplitude cos(petals t)`` in polar form: a circle with ``petals``
+    bumps, non-convex once ``amplitude`` is large enough (``1 / (1 + petals^2)`` and more)."""
+    c, k = nx.real(amplitude, "amplitude"), nx.count(petals, "petals", 1)
+    return polar(lambda t: 1 + c * np.cos(k * t), lambda t: -c * k * np.sin(k * t),
+                 lambda t: -c * k * k * np.cos(k * t), clockwise, name or f"r = 1 + {c:g} cos {k}t")

@@ -1,4 +1,4 @@
-"""`make bench`, part 2: how many submissions a minute `python -m ddg.grade` grades.
+"""`make bench`, part 2: how many submissions a minute `python -m instructor.grade` grades.
 
 Fifty completed notebooks of chapter 3 (two coding exercises), made from the student edition:
 two thirds right, one third with a wrong answer. They are graded in one run, in parallel over the
@@ -17,7 +17,7 @@ import nbformat
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
-from ddg import edition  # noqa: E402
+from instructor import edition  # noqa: E402
 
 CHAPTER = ROOT / "book" / "03_winding_number.ipynb"
 
@@ -38,7 +38,7 @@ def main(count=50):
                         cell.source = cell.source.replace("heading - ", "heading + ")
             nbformat.write(nb, folder / f"student{i:02d}.ipynb")
         start = time.perf_counter()
-        subprocess.run([sys.executable, "-m", "ddg.grade", *map(str, sorted(folder.glob("*.ipynb"))),
+        subprocess.run([sys.executable, "-m", "instructor.grade", *map(str, sorted(folder.glob("*.ipynb"))),
                         "--out", str(folder / "grades.csv"), "--seed", "bench", "--book", str(ROOT / "book")],
                        check=True, capture_output=True)
         seconds = time.perf_counter() - start

@@ -7,7 +7,8 @@ import nbformat
 import numpy as np
 import pytest
 
-from ddg import checks, edition
+from ddg import checks
+from instructor import edition
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 NOTEBOOKS = sorted((ROOT / "book").glob("*.ipynb"))
@@ -52,7 +53,7 @@ def test_student_repository_and_launch_buttons(tmp_path):
     config = (out / "_config.yml").read_text()
     assert "binderhub_url: ''" in config and "colab_url: ''" in config and "use_repository_button: false" in config
     assert "rocket" not in config.split("launch:")[1].split("\n")[0]  # the intro promises no launch button
-    for name in ("ddg/checks.py", "pyproject.toml", "requirements.txt", "README.md", "_vendor", "book/_assets"):
+    for name in ("ddg/checks/__init__.py", "pyproject.toml", "requirements.txt", "README.md", "_vendor", "book/_assets"):
         assert (out / name).exists(), name
 
 

@@ -1,4 +1,4 @@
-"""Journey: an instructor grades a class with `python -m ddg.grade`.
+"""Journey: an instructor grades a class with `python -m instructor.grade`.
 
 A synthetic class is made from the student edition of chapter 3 (two coding exercises): a right
 submission, a partly wrong one, and hostile ones that crash, loop, exit the kernel, eat memory,
@@ -18,7 +18,7 @@ import nbformat
 import pytest
 from journey_helpers import ROOT, run
 
-from ddg import edition
+from instructor import edition
 
 CHAPTER = ROOT / "book" / "03_winding_number.ipynb"
 
@@ -82,7 +82,7 @@ for other in glob.glob("/tmp/ddg-grade-*"):
     }
     paths = [submission(tmp_path / f"{name}.ipynb", *spec) for name, spec in cls.items()]
     start = time.monotonic()
-    result = run([sys.executable, "-m", "ddg.grade", *map(str, paths), "--out", str(out), "--seed", "not-for-students",
+    result = run([sys.executable, "-m", "instructor.grade", *map(str, paths), "--out", str(out), "--seed", "not-for-students",
                   "--cell-timeout", "5", "--answer-timeout", "3", "--timeout", "120", "--book", str(ROOT / "book")], timeout=600)
     elapsed = time.monotonic() - start
     assert "graded 8 submissions" in result.stdout
@@ -114,7 +114,7 @@ def test_grading_needs_the_instructors_exercises_not_the_students(tmp_path):
                                                                 "check": "check_turning_angles"}}
     path.write_text(json.dumps(nb))
     out = tmp_path / "g.csv"
-    run([sys.executable, "-m", "ddg.grade", str(path), "--out", str(out), "--book", str(ROOT / "book")], timeout=300)
+    run([sys.executable, "-m", "instructor.grade", str(path), "--out", str(out), "--book", str(ROOT / "book")], timeout=300)
     with open(out) as file:
         row = next(csv.DictReader(file))
     assert row["total"] == "1" and row["ex-rebuild"] == "0" and row["ex-turning-angles"] == "1"

@@ -33,12 +33,11 @@ uses = {
     "ddg.plot": lambda: importlib.import_module("ddg.plot"),
     "ddg.explore widgets": lambda: explore.polygon_explorer().widget(),
     "ddg.explore shapely": lambda: explore.InflationExplorer().compute(0.3, "non-convex star", "offset"),
-    "ddg.edition": lambda: importlib.import_module("ddg.edition").student_notebook({}),
     "ddg.checks shapely": lambda: importlib.import_module("ddg.checks").run(
         "minkowski_area", lambda curve, eps: 0.0, 0, isolate=False),
 }
 extras = {"ddg.plot": "plot", "ddg.explore widgets": "explore", "ddg.explore shapely": "explore",
-          "ddg.edition": "edition", "ddg.checks shapely": "checks"}
+          "ddg.checks shapely": "checks"}
 for name, use in uses.items():
     try:
         use()

@@ -27,7 +27,7 @@ def normalize(text):
 
 def shown_to_students():
     """All the book's text outside solutions, and the starter code made from solutions."""
-    from ddg.edition import starter
+    from instructor.edition import starter
 
     texts = []
     for path in sorted((ROOT / "book").glob("*.ipynb")):

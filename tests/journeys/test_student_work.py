@@ -57,7 +57,7 @@ def test_student_answers_are_never_deleted(tmp_path):
 
     run(["make", "clean"], cwd=copy)  # an unchanged edition is deleted freely
     assert not (copy / "_build").exists()
-    # the other cases (rewriting an unchanged edition, make clean FORCE=1) are rules of ddg.edition,
+    # the other cases (rewriting an unchanged edition, make clean FORCE=1) are rules of instructor.edition,
     # tested without a build in tests/test_edition.py
 
 

@@ -1,4 +1,4 @@
-"""Grade a class: ``python -m ddg.grade SUBMISSIONS... --out grades.csv [--seed SECRET]``.
+"""Grade a class: ``python -m instructor.grade SUBMISSIONS... --out grades.csv [--seed SECRET]``.
 
 Each submission is a completed notebook of the student edition. For each one the grader
 
@@ -37,8 +37,8 @@ import tempfile
 
 import numpy as np
 
-from . import checks
-from ._extras import missing
+from ddg import checks
+from ddg._extras import missing
 
 MARKER = "ddg-grade-results: "
 
@@ -183,7 +183,7 @@ def grade_one(submission, table, secret, timeout, memory, cell_timeout, answer_t
                "JUPYTER_RUNTIME_DIR": str(work / "runtime"), "IPYTHONDIR": str(work / "ipython"),
                "MPLCONFIGDIR": str(work / "matplotlib"), "PYTHONPATH": os.pathsep.join(sys.path[1:]),
                "PYDEVD_DISABLE_FILE_VALIDATION": "1", "TMPDIR": str(work), "WORK": str(work)}
-        command = [*_sandbox(), sys.executable, "-m", "ddg.grade", "--run-one", str(work / "submission.ipynb"),
+        command = [*_sandbox(), sys.executable, "-m", "instructor.grade", "--run-one", str(work / "submission.ipynb"),
                    "--jobs-json", json.dumps(jobs), "--cell-timeout", str(cell_timeout),
                    "--answer-timeout", str(answer_timeout)]
         with tempfile.TemporaryFile() as log:  # the grader's own file: only the runner's output lands here

@@ -1,4 +1,4 @@
-"""The student edition: ``python -m ddg.edition`` (``make student``) writes ``student/``.
+"""The student edition: ``python -m instructor.edition`` (``make student``) writes ``_build/student/``.
 
 The book's notebooks mark their homework like this:
 
@@ -22,7 +22,7 @@ import re
 import shutil
 import sys
 
-from ._extras import missing
+from ddg._extras import missing
 
 MANIFEST = ".edition.json"
 """In the edition's notebook folder: the SHA-256 of each notebook as written, to tell a student's
@@ -32,24 +32,47 @@ STARTER_NOTE = "# Exercise: write your answer here, then run the check below."
 
 
 def starter(source):
-    """Starter code for a solution cell: signatures and docstrings kept, every body removed."""
-    tree = ast.parse(source)
+    """Starter code for a solution cell: signatures, decorators and docstrings kept, bodies removed.
+
+    Functions (``async`` ones too) keep their signature and docstring and raise
+    ``NotImplementedError``; a class keeps its bases and docstring, with each method stubbed the
+    same way; an assignment becomes ``name = ...``; imports stay. A cell that is not plain Python
+    (an IPython magic such as ``%matplotlib``, a shell line) raises ``ValueError`` saying so.
+    """
+    magic = re.search(r"^\s*([%!].*)$", source, re.MULTILINE)
+    if magic:
+        raise ValueError(f"a solution cell must be plain Python, but it has the line {magic.group(1)!r}: move "
+                         "magics and shell commands to a cell of their own")
+    try:
+        tree = ast.parse(source)
+    except SyntaxError as error:
+        raise ValueError(f"a solution cell is not valid Python: {error.msg} on line {error.lineno}") from None
     parts = [STARTER_NOTE]
     for node in tree.body:
-        if isinstance(node, ast.FunctionDef):
-            doc = ast.get_docstring(node)
-            args = ast.unparse(node.args)
-            lines = [f"def {node.name}({args}):"]
-            if doc:
-                lines.append('    """' + doc.replace("\n", "\n    ") + '"""')
-            lines.append('    raise NotImplementedError("write this function")')
-            parts.append("\n".join(lines))
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+            parts.append(ast.unparse(_stub(node)))
         elif isinstance(node, (ast.Assign, ast.AnnAssign)):
             targets = node.targets if isinstance(node, ast.Assign) else [node.target]
             parts.append(" = ".join(ast.unparse(t) for t in targets) + " = ...  # your answer")
         elif isinstance(node, (ast.Import, ast.ImportFrom)):
             parts.append(ast.unparse(node))
-    return "\n\n".join(parts) + "\n"
+    code = "\n\n".join(parts) + "\n"
+    compile(code, "<starter>", "exec")  # ast.unparse writes valid Python, docstrings quoted as needed
+    return code
+
+
+def _stub(node):
+    """``node`` with its body replaced: the docstring, then ``raise NotImplementedError`` (methods stubbed)."""
+    doc = ast.get_docstring(node, clean=False)
+    body = [ast.Expr(ast.Constant(doc))] if doc is not None else []
+    if isinstance(node, ast.ClassDef):
+        body += [_stub(item) for item in node.body if isinstance(item, (ast.FunctionDef, ast.AsyncFunctionDef))]
+        body = body or [ast.Pass()]
+    else:
+        body.append(ast.Raise(ast.Call(ast.Name("NotImplementedError", ast.Load()), [ast.Constant("write this function")],
+                                       [])))
+    stub = type(node)(**{**{field: getattr(node, field) for field in node._fields}, "body": body})
+    return ast.fix_missing_locations(ast.copy_location(stub, node))
 
 
 def _opens(cell):
@@ -87,7 +110,10 @@ def student_notebook(nb):
         if not inside:
             cells.append(cell)
         elif "solution" in tags:
-            cell.source = starter(cell.source)
+            try:
+                cell.source = starter(cell.source)
+            except ValueError as problem:
+                raise ValueError(f"code cell {len(cells)} of the student edition: {problem}") from None
             cell.metadata["tags"] = [t for t in tags if t != "solution"] + ["starter"]
             cell.metadata.pop("jupyter", None)  # folded with the solution in the book: open for students
             cells.append(cell)

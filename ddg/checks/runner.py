@@ -1,0 +1,333 @@
+"""Running an answer apart from the check: a child process, a time limit, and what crosses back.
+
+:func:`evaluate` calls ``answer(*args)`` for every argument tuple, in a process of its own (a copy
+of the caller's, made with ``fork``), and returns what came back as plain data: the values as
+nested lists of numbers, or what went wrong. Inside that process:
+
+* the ``ddg`` quantities the exercise asks for are switched off (they raise ``WriteItYourself``),
+  as is anything the check uses to measure (``measures``: shapely's ``buffer``, say);
+* the check's own code is gone: the modules that draw input, hold expectations or judge are
+  emptied and cannot be imported or reloaded again, and ``importlib.reload`` refuses, so neither
+  a reference measurement nor the frames of the caller lead back to an answer;
+* the answer has at most :data:`MEMORY_LIMIT` bytes more than the caller, at most
+  :data:`PROCESS_LIMIT` processes (where the operating system enforces it for the user), and
+  everything it starts is stopped with it: on Linux as root it runs as process 1 of a new PID
+  namespace, which the kernel ends as a whole; elsewhere a warden process, made the subreaper of
+  everything the answer starts (even after ``setsid``), stops them all.
+
+Where ``fork`` is missing (Windows) the answer runs in a thread of this process: the time limit
+still gives a verdict, but nothing above is in place. None of this stops an answer that copies
+``ddg``'s public source, which is always at hand.
+"""
+
+import contextlib
+import ctypes
+import io
+import json
+import os
+import resource
+import select
+import signal
+import sys
+import threading
+import time
+
+import numpy as np
+
+TIME_LIMIT = 10.0
+"""Seconds an answer may run, for all the input of one check together."""
+
+MEMORY_LIMIT = 2 << 30
+"""Bytes of address space an answer may use beyond what its process starts with."""
+
+PROCESS_LIMIT = 64
+"""Processes an answer may start (counted, as the operating system does, per user)."""
+
+SEALED = ("ddg.checks", "ddg.explore")
+"""Modules the answer's process loses: the checks' drawing, measuring and judging code."""
+
+
+class WriteItYourself(Exception):
+    """Raised when an answer uses the quantity its exercise asks for."""
+
+
+def evaluate(answer, calls, forbidden=(), measures=(), limit=TIME_LIMIT, build=lambda spec: spec):
+    """``answer(*build(args))`` for each ``args`` in ``calls``, apart from the caller.
+
+    Returns a list with one entry per call (``{"value": ..., "type": ..., "mutated": bool}``,
+    ``{"error": ..., "kind": ...}`` or ``{"missing": True}``), or a dict if the whole run failed
+    (``{"timeout": limit}``, ``{"exited": True}`` or ``{"error": ...}``). ``forbidden`` names
+    ``DiscreteCurve`` attributes to switch off, ``measures`` the ``"module.attribute"`` callables.
+    """
+    if not callable(answer):
+        return {"error": f"the answer should be a function, got {type(answer).__name__} {answer!r:.40}"}
+    if hasattr(os, "fork") and sys.platform.startswith(("linux", "darwin")):
+        return _in_child(answer, calls, forbidden, measures, limit, build)
+    box = {}
+    thread = threading.Thread(target=lambda: box.update(results=answers(answer, calls, build)), daemon=True)
+    thread.start()
+    thread.join(limit)
+    return box.get("results", {"timeout": limit})
+
+
+def answers(answer, calls, build):
+    """Call the answer on every input; each result or failure as plain data."""
+    return answer_all(answer, [[build(a) for a in spec] for spec in calls])
+
+
+def answer_all(answer, inputs):
+    """Call the answer on every list of arguments in ``inputs``; each result or failure as plain data."""
+    results = []
+    for args in inputs:
+        before = [np.array(a) if isinstance(a, np.ndarray) else None for a in args]
+        try:
+            value = answer(*args)
+        except NotImplementedError:
+            results.append({"missing": True})
+            break
+        except BaseException as error:  # noqa: BLE001 - an answer may raise anything, SystemExit too
+            results.append({"error": str(error)[:300], "kind": type(error).__name__})
+            continue
+        mutated = any(b is not None and (b.shape != a.shape or not np.array_equal(a, b, equal_nan=True))
+                      for a, b in zip(args, before))
+        results.append({**plain(value), "mutated": mutated})
+    return results
+
+
+def plain(value):
+    """What an answer returned, as JSON-ready numbers and its type (or a description of what it was)."""
+    kind = type(value).__name__
+    try:
+        if np.iscomplexobj(value):
+            raise TypeError
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        return {"error": f"it returned {kind} {str(value)[:40]!r}, not real numbers", "kind": "type"}
+    return {"value": array.tolist(), "type": kind}
+
+
+def well_formed(results):
+    """Whether ``results`` is a list of results as :func:`answers` makes them."""
+    def entry(r):
+        return isinstance(r, dict) and (
+            (isinstance(r.get("value"), (int, float, list)) and isinstance(r.get("type"), str))
+            or (isinstance(r.get("error"), str) and isinstance(r.get("kind"), str))
+            or r == {"missing": True})
+    return isinstance(results, list) and all(entry(r) for r in results)
+
+
+# ------------------------------------------------------------------ the answer's process
+
+
+def _seal(forbidden, measures):
+    """In the answer's process: switch off what the answer must not use, and drop the checks."""
+    from ..curve import DiscreteCurve
+
+    private = {"turning_angles": ("_tan_half_psi",), "curvature": ("_curvatures",)}
+    for name in forbidden:
+        def refuse(*args, _name=name, **kwargs):
+            raise WriteItYourself(f"it uses ddg's `{_name}`, which this exercise asks you to write yourself")
+        for attribute in (name, *private.get(name, ())):
+            setattr(DiscreteCurve, attribute, property(refuse))
+    for dotted in measures:
+        module_name, _, attribute = dotted.rpartition(".")
+        module = sys.modules.get(module_name)
+        if module is not None:
+            def refuse(*args, _name=dotted, **kwargs):
+                raise WriteItYourself(f"it uses `{_name}`, which measures what this exercise asks you to compute")
+            setattr(module, attribute, refuse)
+            for cls in vars(module).values():  # shapely.Polygon.buffer and the like
+                if isinstance(cls, type) and attribute in vars(cls):
+                    setattr(cls, attribute, refuse)
+    for name in [m for m in sys.modules if m.startswith(SEALED) and m != __name__]:
+        module = sys.modules[name]
+        for value in list(vars(module).values()):  # the exercises' methods, wherever they are kept
+            if isinstance(value, type) and value.__module__.startswith(SEALED):
+                for attribute in [a for a in vars(value) if not a.startswith("__")]:
+                    with contextlib.suppress(AttributeError, TypeError):
+                        delattr(value, attribute)
+        vars(module).clear()
+        sys.modules[name] = None  # `import` raises ImportError
+    package = sys.modules.get("ddg")
+    for name in ("checks", "explore"):
+        with contextlib.suppress(AttributeError):
+            delattr(package, name)
+    sys.meta_path.insert(0, _NoNewDdg())
+    import importlib
+
+    def no_reload(module):
+        raise ImportError("reloading a module is switched off while a check runs")
+    importlib.reload = no_reload
+
+
+class _NoNewDdg:
+    """An import hook that refuses to load any part of ``ddg`` anew (what is loaded stays)."""
+
+    def find_spec(self, name, path=None, target=None):
+        if name == "ddg" or name.startswith("ddg."):
+            raise ImportError(f"{name} cannot be imported afresh while a check runs")
+        return None
+
+
+def _limits():
+    """Limits on the answer's memory, processes and core files."""
+    with contextlib.suppress(OSError, ValueError):
+        pages = int(open("/proc/self/statm").read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
+        resource.setrlimit(resource.RLIMIT_AS, (pages + MEMORY_LIMIT, pages + MEMORY_LIMIT))
+    with contextlib.suppress(OSError, ValueError, AttributeError):
+        running = len([p for p in os.listdir("/proc") if p.isdigit()]) if os.path.isdir("/proc") else 0
+        resource.setrlimit(resource.RLIMIT_NPROC, (running + PROCESS_LIMIT, running + PROCESS_LIMIT))
+    with contextlib.suppress(OSError, ValueError):
+        resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+
+
+def _libc():
+    try:
+        return ctypes.CDLL(None, use_errno=True)
+    except OSError:
+        return None
+
+
+def _new_pid_namespace():
+    """Whether this process's next child will be process 1 of a new PID namespace (Linux, as root)."""
+    libc = _libc()
+    return bool(sys.platform.startswith("linux") and libc is not None and libc.unshare(0x20000000) == 0)
+
+
+def _descendants(pid):
+    """Every process below ``pid``, from ``/proc`` (Linux)."""
+    found, frontier = [], [pid]
+    while frontier:
+        parent = frontier.pop()
+        with contextlib.suppress(OSError):
+            for task in os.listdir(f"/proc/{parent}/task"):
+                with open(f"/proc/{parent}/task/{task}/children") as file:
+                    children = [int(c) for c in file.read().split()]
+                found += children
+                frontier += children
+    return found
+
+
+def _stop_all_below(pid):
+    """Kill every descendant of ``pid`` until none is left (they may be forking meanwhile)."""
+    for _ in range(200):
+        below = _descendants(pid)
+        if not below:
+            return
+        for child in below:
+            with contextlib.suppress(OSError):
+                os.kill(child, signal.SIGKILL)
+        with contextlib.suppress(ChildProcessError):
+            while os.waitpid(-1, os.WNOHANG)[0]:
+                pass
+        time.sleep(0.001)
+
+
+def _warden(answer, calls, forbidden, measures, build, results_fd, control_fd):
+    """The child: start the answer's process, hand its pid to the caller, and stop all it leaves."""
+    contained = _new_pid_namespace()
+    if not contained:
+        _libc() and _libc().prctl(36, 1, 0, 0, 0)  # PR_SET_CHILD_SUBREAPER: orphans come to us
+    pid = os.fork()
+    if pid == 0:  # the answer's process
+        try:
+            os.close(control_fd)
+            sys.stdout = sys.stderr = io.StringIO()  # the kernel's streams belong to the caller
+            inputs = [[build(a) for a in spec] for spec in calls]  # before the builders are sealed away
+            _limits()
+            _seal(forbidden, measures)
+            data = json.dumps(answer_all(answer, inputs)).encode()
+            view = memoryview(data)
+            while view:
+                view = view[os.write(results_fd, view):]
+        finally:
+            os._exit(0)
+    os.close(results_fd)
+    os.write(control_fd, f"{pid}\n".encode())
+    os.close(control_fd)
+
+    def stop(*_):
+        with contextlib.suppress(OSError):
+            os.kill(pid, signal.SIGKILL)
+        _stop_all_below(os.getpid())
+        os._exit(0)
+
+    signal.signal(signal.SIGTERM, stop)
+    with contextlib.suppress(ChildProcessError):
+        os.waitpid(pid, 0)
+    stop()
+
+
+def _in_child(answer, calls, forbidden, measures, limit, build):
+    """Run the answer in a warden's child; read its results back through a pipe."""
+    results_read, results_write = os.pipe()
+    control_read, control_write = os.pipe()
+    warden = os.fork()
+    if warden == 0:
+        try:
+            os.close(results_read)
+            os.close(control_read)
+            os.setpgid(0, 0)
+            _warden(answer, calls, forbidden, measures, build, results_write, control_write)
+        finally:
+            os._exit(0)
+    os.close(results_write)
+    os.close(control_write)
+    with contextlib.suppress(OSError):
+        os.setpgid(warden, warden)
+    deadline = time.monotonic() + limit
+    answering = _read_pid(control_read, deadline)
+    chunks = []
+    try:
+        while True:
+            left = deadline - time.monotonic()
+            if left <= 0 or not select.select([results_read], [], [], left)[0]:
+                return {"timeout": limit}
+            chunk = os.read(results_read, 1 << 16)
+            if not chunk:
+                break
+            chunks.append(chunk)
+    finally:
+        os.close(results_read)
+        _end(warden, answering)
+    if not chunks:
+        return {"exited": True}
+    try:
+        results = json.loads(b"".join(chunks))
+    except ValueError:
+        results = None
+    return results if well_formed(results) else {"error": "the process the answer ran in sent back something that "
+                                                          "is not its results"}
+
+
+def _read_pid(fd, deadline):
+    """The answer's process id, as its warden reports it (``None`` if it does not)."""
+    data = b""
+    while not data.endswith(b"\n") and time.monotonic() < deadline:
+        if not select.select([fd], [], [], max(0.0, deadline - time.monotonic()))[0]:
+            break
+        chunk = os.read(fd, 64)
+        if not chunk:
+            break
+        data += chunk
+    os.close(fd)
+    return int(data) if data.strip().isdigit() else None
+
+
+def _end(warden, answering):
+    """Stop the warden (which stops everything below it) and, to be sure, the answer's process."""
+    with contextlib.suppress(OSError):
+        os.kill(warden, signal.SIGTERM)
+    for _ in range(200):  # up to 1 s for the warden to clean up
+        with contextlib.suppress(ChildProcessError):
+            if os.waitpid(warden, os.WNOHANG)[0]:
+                break
+        time.sleep(0.005)
+    for pid in (answering, warden):
+        if pid:
+            with contextlib.suppress(OSError):
+                os.kill(pid, signal.SIGKILL)
+    with contextlib.suppress(OSError):
+        os.killpg(warden, signal.SIGKILL)
+    with contextlib.suppress(ChildProcessError):
+        os.waitpid(warden, 0)
