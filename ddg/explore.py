@@ -15,337 +15,23 @@ One explorer, two places:
   (``book/_assets/ddg-player.js``) only looks them up and draws them. Printed, or without
   JavaScript, the page shows the first state.
 
-A state is a :class:`Scene`: panels of lines, dots, arrows and text in data coordinates, plus a
-line of numbers and a text alternative that says what the picture shows. :class:`Animation` plays
-a list of scenes (the inflation and curve-shortening chapters use it).
+A state is a :class:`ddg.scene.Scene`: panels of lines, dots, arrows and text in data coordinates,
+plus a line of numbers and a text alternative that says what the picture shows; ``ddg.scene``
+also holds what turns controls and scenes into widgets and pages. The chapters' animations
+(:func:`inflation_animation`, :func:`flow_animation`) are at the end of this module.
 """
 
-import base64
-import gzip
 import html
-import itertools
-import json
 
 import numpy as np
 
 from . import smooth
 from ._extras import missing
 from .curve import CURVATURES, INFLATIONS, DiscreteCurve, regular_polygon
+from .scene import COLORS, RAMP, Animation, Explorer, Scene, svg
 
-COLORS = {"blue": "#3b82f6", "orange": "#f59e0b", "green": "#10b981", "red": "#ef4444", "purple": "#a855f7",
-          "grey": "#9ca3af"}
-"""Mid-tone colours, readable on the light and on the dark theme. Text and axes use the page's own
-text colour (``currentColor``)."""
-
-RAMP = ("#2563eb", "#9ca3af", "#dc2626")
-"""The colour ramp of values in [0, 1] (curvature): blue, grey, red. The player uses the same."""
-
-
-def _ramp(value):
-    """The colour of ``value`` in [0, 1] on :data:`RAMP` (for the Python rendering)."""
-    value = min(max(float(value), 0.0), 1.0)
-    i = 0 if value <= 0.5 else 1
-    t = value * 2 - i
-    a, b = (np.array([int(c[k:k + 2], 16) for k in (1, 3, 5)]) for c in RAMP[i:i + 2])
-    return "#" + "".join(f"{int(round(x)):02x}" for x in a + t * (b - a))
-
-
-def _round(values, step):
-    """Values rounded to the decimals that resolve ``step`` (a fraction of a pixel), for short JSON."""
-    decimals = max(0, int(np.ceil(-np.log10(step))))
-    return [float(x) for x in np.round(np.asarray(values, dtype=float).ravel(), decimals)]
-
-
-class Scene:
-    """What one state of an explorer shows: panels with shapes, a line of numbers, a text alternative.
-
-    Each panel is a dict: its data box ``box = (x0, y0, x1, y1)`` (``y`` up), its size in pixels
-    ``px = (w, h)``, a ``title``, and optionally a ``margin`` in pixels (left, right, top, bottom;
-    default :data:`MARGIN`, room for axes). Shapes are given in data coordinates; text positions
-    may also be given in pixels (``space="px"``).
-    """
-
-    def __init__(self, panels, summary="", alt=""):
-        self.panels = panels  # list of {"box": (x0, y0, x1, y1), "px": (w, h), "title": str}
-        self.items = []
-        self.summary, self.alt = summary, alt
-        for i, panel in enumerate(panels):
-            if panel.get("title"):
-                self.text(i, panel["px"][0] / 2, -10, panel["title"], "middle", 14, space="px")
-
-    def _step(self, panel):
-        """A quarter of a pixel, in the panel's data units: finer than anyone can see."""
-        x0, y0, x1, y1 = self.panels[panel]["box"]
-        w, h = self.panels[panel]["px"]
-        return max((x1 - x0) / w, (y1 - y0) / h) / 4
-
-    def line(self, panel, points, color="currentColor", width=1.5, closed=False, fill=None, dash=None,
-             opacity=None):
-        points = np.asarray(points, dtype=float).reshape(-1, 2)
-        item = {"k": "line", "p": panel, "d": _round(points, self._step(panel)), "s": color, "w": width}
-        item.update({k: v for k, v in (("z", closed), ("f", fill), ("dash", dash), ("o", opacity)) if v})
-        self.items.append(item)
-
-    def dots(self, panel, points, color="currentColor", r=3, labels=None, handle=False, values=None):
-        """Dots; with ``labels`` each one can be focused and hovered to show its label; with
-        ``values`` (in [0, 1]) each is coloured on :data:`RAMP` instead of ``color``."""
-        item = {"k": "dots", "p": panel, "d": _round(points, self._step(panel)), "s": color, "r": r}
-        if values is not None:
-            item["c"] = _round(values, 0.01)
-        if labels is not None:
-            item["l"] = list(labels)
-        if handle:
-            item["h"] = True  # the point a reader drags (the vertex explorer)
-        self.items.append(item)
-
-    def arrows(self, panel, origins, vectors, color="currentColor", width=2):
-        tips = np.asarray(origins, dtype=float) + np.asarray(vectors, dtype=float)
-        self.items.append({"k": "arrows", "p": panel, "d": _round(np.hstack([np.asarray(origins, float), tips]),
-                                                                  self._step(panel)), "s": color, "w": width})
-
-    def bars(self, panel, x, heights, width, colors):
-        """Vertical bars from 0 to ``heights`` at the centres ``x``, each in its colour."""
-        step = self._step(panel)
-        self.items.append({"k": "bars", "p": panel, "x": _round(x, step), "h": _round(heights, step),
-                           "b": width, "c": list(colors)})
-
-    def text(self, panel, x, y, string, anchor="start", size=13, color="currentColor", space="data", rotate=0):
-        item = {"k": "text", "p": panel, "x": float(x), "y": float(y), "t": string, "a": anchor, "z": size, "s": color}
-        if space == "px":
-            item["px"] = True
-        if rotate:
-            item["r"] = rotate
-        self.items.append(item)
-
-    def axes(self, panel, xticks, yticks, xlabel="", ylabel="", xfmt="{:g}", yfmt="{:g}"):
-        """A frame with ticks and labels at the given values (in the panel's data coordinates)."""
-        x0, y0, x1, y1 = self.panels[panel]["box"]
-        self.line(panel, [(x0, y0), (x1, y0), (x1, y1), (x0, y1)], closed=True, width=0.8, opacity=0.6)
-        w, h = self.panels[panel]["px"]
-        for x in xticks:
-            self.line(panel, [(x, y0), (x, y0 + (y1 - y0) * 0.02)], width=0.8)
-            self.text(panel, (x - x0) / (x1 - x0) * w, h + 17, xfmt.format(x), "middle", 13, space="px")
-        for y in yticks:
-            self.line(panel, [(x0, y), (x0 + (x1 - x0) * 0.02, y)], width=0.8)
-            self.text(panel, -5, h - (y - y0) / (y1 - y0) * h + 4, yfmt.format(y), "end", 13, space="px")
-        if xlabel:
-            self.text(panel, w / 2, h + 36, xlabel, "middle", 14, space="px")
-        if ylabel:
-            self.text(panel, -34, h / 2, ylabel, "middle", 14, space="px", rotate=-90)
-
-
-# ------------------------------------------------------------------ SVG, here and in the page
-
-MARGIN = (46, 10, 28, 42)
-"""Panel margins in pixels (left, right, top, bottom): room for ticks, labels and the title."""
-
-
-def _to_px(panel, x, y):
-    x0, y0, x1, y1 = panel["box"]
-    w, h = panel["px"]
-    return (x - x0) / (x1 - x0) * w, h - (y - y0) / (y1 - y0) * h
-
-
-def _path(panel, flat, closed=False):
-    pts = [_to_px(panel, flat[i], flat[i + 1]) for i in range(0, len(flat), 2)]
-    return "M" + "L".join(f"{x:.1f},{y:.1f}" for x, y in pts) + ("Z" if closed else "")
-
-
-def svg(scene, panel_index):
-    """One panel of ``scene`` as an SVG element (what the player draws, for no-JS pages and widgets)."""
-    panel = scene.panels[panel_index]
-    w, h = panel["px"]
-    left, right, top, bottom = panel.get("margin", MARGIN)
-    out = [f'<svg xmlns="http://www.w3.org/2000/svg" class="ddg-panel" viewBox="{-left} {-top} {w + left + right} '
-           f'{h + top + bottom}" width="{w + left + right}" height="{h + top + bottom}" role="img" '
-           f'aria-label="{html.escape(panel.get("title", ""))}" font-family="sans-serif" fill="currentColor">']
-    for item in (i for i in scene.items if i["p"] == panel_index):
-        kind, d = item["k"], item.get("d", [])
-        if kind == "line":
-            style = f'stroke="{item["s"]}" stroke-width="{item["w"]}" fill="{item.get("f", "none")}"'
-            style += f' stroke-dasharray="{item["dash"]}"' if item.get("dash") else ""
-            style += f' opacity="{item["o"]}"' if item.get("o") else ""
-            out.append(f'<path d="{_path(panel, d, item.get("z"))}" {style}/>')
-        elif kind == "dots":
-            for j in range(0, len(d), 2):
-                x, y = _to_px(panel, d[j], d[j + 1])
-                color = _ramp(item["c"][j // 2]) if "c" in item else item["s"]
-                out.append(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="{item["r"]}" fill="{color}"/>')
-        elif kind == "arrows":
-            for j in range(0, len(d), 4):
-                (x, y), (u, v) = _to_px(panel, d[j], d[j + 1]), _to_px(panel, d[j + 2], d[j + 3])
-                out.append(f'<line x1="{x:.1f}" y1="{y:.1f}" x2="{u:.1f}" y2="{v:.1f}" stroke="{item["s"]}" '
-                           f'stroke-width="{item["w"]}"/><circle cx="{u:.1f}" cy="{v:.1f}" r="2.5" '
-                           f'fill="{item["s"]}"/>')
-        elif kind == "bars":
-            for x, height, color in zip(item["x"], item["h"], item["c"]):
-                (left, top), (right, bottom) = (_to_px(panel, x - item["b"] / 2, max(height, 0)),
-                                                _to_px(panel, x + item["b"] / 2, min(height, 0)))
-                out.append(f'<rect x="{left:.1f}" y="{top:.1f}" width="{right - left:.1f}" height="{bottom - top:.1f}" '
-                           f'fill="{color}"/>')
-        elif kind == "text":
-            x, y = (item["x"], item["y"]) if item.get("px") else _to_px(panel, item["x"], item["y"])
-            rotate = f' transform="rotate({item["r"]} {x:.1f} {y:.1f})"' if item.get("r") else ""
-            out.append(f'<text x="{x:.1f}" y="{y:.1f}" text-anchor="{item["a"]}" font-size="{item["z"]}" '
-                       f'fill="{item["s"]}"{rotate}>{html.escape(item["t"])}</text>')
-    out.append("</svg>")
-    return "".join(out)
-
-
-def _pack(scenes, controls, drag=None):
-    """The page's data: controls, panels, and every state as references into shared pools.
-
-    Items that several states share (the axes, a curve, a polygon drawn for three formulas) and
-    long number arrays are stored once; a state lists the indices of its items.
-    """
-    pool, pool_index, items, item_index, states, panel_sets, panel_index = [], {}, [], {}, {}, [], {}
-    for key, scene in scenes.items():
-        refs = []
-        for item in scene.items:
-            item = dict(item)
-            if len(item.get("d", [])) > 16:
-                text = json.dumps(item["d"])
-                item["d"] = {"$": pool_index.setdefault(text, len(pool))}
-                if item["d"]["$"] == len(pool):
-                    pool.append(json.loads(text))
-            text = json.dumps(item, sort_keys=True)
-            refs.append(item_index.setdefault(text, len(items)))
-            if refs[-1] == len(items):
-                items.append(item)
-        text = json.dumps(scene.panels, sort_keys=True)  # the panels' boxes and sizes, shared when equal
-        panels = panel_index.setdefault(text, len(panel_sets))
-        if panels == len(panel_sets):
-            panel_sets.append(json.loads(text))
-        states[key] = {"i": refs, "p": panels, "t": scene.summary, "a": scene.alt}
-    return {"controls": controls, "panels": panel_sets, "margin": MARGIN, "ramp": RAMP, "pool": pool,
-            "items": items, "states": states, "drag": drag}
-
-
-# ------------------------------------------------------------------ explorers
-
-
-class Explorer:
-    """Controls over ``ddg`` computations; a subclass defines them and :meth:`scene`.
-
-    ``controls`` is a list of dicts: ``name``, ``label``, ``type`` (``"select"``, ``"range"`` or
-    ``"frames"``), ``options`` (the values a static page offers) and ``value``. A live notebook
-    accepts any value in the range of a ``"range"`` control (``live_min``, ``live_max``, ``step``).
-    """
-
-    controls = []
-    drag = None
-    title = ""
-
-    def values(self):
-        return {c["name"]: c["value"] for c in self.controls}
-
-    def scene(self, **values):
-        raise NotImplementedError
-
-    def key(self, values):
-        """The state's name: its control values as the page's script writes them (1.0 as "1")."""
-        return "|".join(_key_text(values[c["name"]]) for c in self.controls)
-
-    def states(self):
-        """Every state a reader of the static page can reach, by key."""
-        names = [c["name"] for c in self.controls]
-        grid = itertools.product(*(c["options"] for c in self.controls))
-        return {self.key(dict(zip(names, combo))): self.scene(**dict(zip(names, combo))) for combo in grid}
-
-    def html(self):
-        """The kernel-free explorer: data for the player, and the first state drawn for no-JS and print.
-
-        A control's value that the static page does not offer is moved to the nearest one it does.
-        """
-        values = self.values()
-        for c in self.controls:
-            if c["type"] == "range" and values[c["name"]] not in c["options"]:
-                values[c["name"]] = min(c["options"], key=lambda option: abs(option - values[c["name"]]))
-        first = self.scene(**values)
-        data = _pack(self.states(), self.controls, self.drag)
-        data["value"] = self.key(values)
-        data["title"] = self.title
-        figures = "".join(svg(first, i) for i in range(len(first.panels)))
-        strip = "".join(f'<div class="ddg-print-state" role="img" aria-label="{html.escape(scene.alt)}">'
-                        + "".join(svg(scene, i) for i in range(len(scene.panels)))
-                        + f'<p class="ddg-summary">{scene.summary}</p></div>' for scene in self.print_states())
-        blob = base64.b64encode(gzip.compress(json.dumps(data, separators=(",", ":")).encode(), mtime=0)).decode()
-        return (f'<div class="ddg-explorer" data-title="{html.escape(self.title)}">'
-                f'<div class="ddg-static" role="img" aria-label="{html.escape(first.alt)}">{figures}'
-                f'<p class="ddg-summary">{first.summary}</p></div>'
-                f'<div class="ddg-print"><p class="ddg-print-note">{html.escape(self.title or "An animation")}, '
-                f'in {len(self.print_states())} of its states. The live version is in the web edition of this '
-                f'page and in the chapter\'s notebook.</p>{strip}</div>'
-                f'<script type="application/gzip+base64" class="ddg-data">{blob}</script></div>')
-
-    def print_states(self, count=3):
-        """A few states for a printed page: the first slider (or frames) from start to end."""
-        values = self.values()
-        moving = next((c for c in self.controls if c["type"] in ("range", "frames")), None)
-        if moving is None:
-            return [self.scene(**values)]
-        picks = np.unique(np.linspace(0, len(moving["options"]) - 1, count).round().astype(int))
-        return [self.scene(**{**values, moving["name"]: moving["options"][i]}) for i in picks]
-
-    def widget(self):
-        """Live controls (ipywidgets) that recompute the scene with ``ddg`` on every change."""
-        try:
-            import ipywidgets as widgets
-        except ImportError as error:
-            raise missing("explore", error) from error
-        inputs = {}
-        for c in self.controls:
-            if c["type"] == "select":
-                inputs[c["name"]] = widgets.Dropdown(options=c["options"], value=c["value"], description=c["label"])
-            elif c["type"] == "range":
-                low, high = c.get("live_min", c["options"][0]), c.get("live_max", c["options"][-1])
-                step = c.get("step", 1)
-                kind = widgets.IntSlider if isinstance(step, int) else widgets.FloatSlider
-                inputs[c["name"]] = kind(value=c["value"], min=low, max=high, step=step, description=c["label"],
-                                         continuous_update=False)
-            else:  # frames
-                inputs[c["name"]] = widgets.IntSlider(value=c["value"], min=0, max=len(c["options"]) - 1,
-                                                      description=c["label"])
-        picture, summary = widgets.HTML(), widgets.HTML()
-
-        def redraw(_=None):
-            scene = self.scene(**{name: control.value for name, control in inputs.items()})
-            picture.value = (f'<div class="ddg-static" role="img" aria-label="{html.escape(scene.alt)}">'
-                             + "".join(svg(scene, i) for i in range(len(scene.panels))) + "</div>")
-            summary.value = scene.summary
-
-        for control in inputs.values():
-            control.observe(redraw, names="value")
-        redraw()
-        box = widgets.VBox([widgets.HBox(list(inputs.values())), summary, picture])
-        box.explorer = self
-        return box
-
-    def _repr_mimebundle_(self, **kwargs):
-        """Live widgets where a kernel runs; the kernel-free explorer in the book (``text/html``)."""
-        bundle = {"text/html": self.html(), "text/plain": f"<{type(self).__name__}: {self.title}>"}
-        try:
-            box = self.widget()
-        except ImportError:
-            return bundle
-        return {**box._repr_mimebundle_(**kwargs), **{k: v for k, v in bundle.items() if k != "text/plain"}}
-
-
-def _key_text(value):
-    """A control value as JavaScript's ``String()`` writes it: 0.0 is "0", 0.15 is "0.15"."""
-    if isinstance(value, float) and value.is_integer():
-        return str(int(value))
-    return str(value)
-
-
-def _nice_ticks(low, high, count=5):
-    """About ``count`` round tick values between ``low`` and ``high``."""
-    step = 10 ** np.floor(np.log10((high - low) / count))
-    for factor in (1, 2, 5, 10):
-        if (high - low) / (step * factor) <= count:
-            step *= factor
-            break
-    return list(np.arange(np.ceil(low / step), np.floor(high / step) + 1) * step)
+__all__ = ["COLORS", "RAMP", "Animation", "Explorer", "Scene", "svg", "polygon_explorer", "inflation_explorer",
+           "vertex_explorer", "inflation_animation", "flow_animation", "inflation_pieces", "measured_region"]
 
 
 SHAPES = {
@@ -549,31 +235,6 @@ class VertexExplorer(Explorer):
         return scene
 
 
-class Animation(Explorer):
-    """Scenes played in order: a play/pause button and a slider to scrub through them.
-
-    ``frames`` is a list of :class:`Scene` objects (all with the same panels), computed by the
-    caller with ``ddg``; ``label`` names the quantity that changes (``"ε"``, ``"t"``), ``values``
-    its value in each frame; ``start`` the frame shown first (and on paper).
-    """
-
-    def __init__(self, frames, label, values, title="", interval=250, start=0):
-        self.frames, self.title, self.interval = list(frames), title, interval
-        if isinstance(start, bool) or not isinstance(start, (int, np.integer)) or not 0 <= start < len(self.frames):
-            raise ValueError(f"start must be a frame index from 0 to {len(self.frames) - 1}, got {start!r}")
-        self.controls = [{"name": "frame", "label": label, "type": "frames", "options": list(range(len(self.frames))),
-                          "value": int(start), "shown": [f"{v:g}" for v in values], "interval": interval}]
-
-    def scene(self, frame):
-        return self.frames[int(frame)]
-
-    def states(self):
-        return {str(i): frame for i, frame in enumerate(self.frames)}
-
-    def key(self, values):
-        return str(values["frame"])
-
-
 def polygon_explorer(n=12, shape="ellipse", kind="angle"):
     """Controls for ``n``, the curve (``ddg.explore.SHAPES``) and the formula (``ddg.CURVATURES``)."""
     return PolygonExplorer(n, shape, kind)
@@ -587,3 +248,102 @@ def inflation_explorer(eps=0.3, shape="non-convex star", method="minkowski"):
 def vertex_explorer(dx=0.0, dy=0.0):
     """Move one vertex of a regular hexagon: drag it, or use the controls."""
     return VertexExplorer(dx, dy)
+
+
+# ------------------------------------------------------------------ the chapters' animations
+
+FLOW_COLORS = dict(zip(CURVATURES, (COLORS["blue"], COLORS["orange"], COLORS["green"])))
+"""The colour of each flow (by its curvature) in the chapters' figures and animations."""
+
+
+def inflation_pieces(curve, eps):
+    """The pieces of the two inflations of a clockwise convex polygon by ``eps`` (lecture §3.4).
+
+    Returns ``(rectangles, sectors, kites)``: a rectangle (4 points) on each edge, and at each
+    corner the disk sector (centre, start and end angle in degrees, clockwise from ``N_{i-1/2}``)
+    and the kite (``v_i``, the two moved edge ends and the point where the moved edges meet).
+    """
+    v, N, psi = curve.vertices, curve.normals, curve.turning_angles
+    N_prev, v_next = np.roll(N, 1, axis=0), np.roll(v, -1, axis=0)
+    rectangles = [np.array([v[i], v_next[i], v_next[i] + eps * N[i], v[i] + eps * N[i]]) for i in range(len(v))]
+    corner = v + eps * (N_prev + N) / (1 + np.einsum("ij,ij->i", N_prev, N))[:, None]  # 1 + cos psi
+    kites = [np.array([v[i], v[i] + eps * N_prev[i], corner[i], v[i] + eps * N[i]]) for i in range(len(v))]
+    start = np.degrees(np.arctan2(N_prev[:, 1], N_prev[:, 0]))
+    sectors = [(v[i], start[i] - np.degrees(psi[i]), start[i]) for i in range(len(v))]
+    return rectangles, sectors, kites
+
+
+def _sector(centre, eps, start, end, steps=12):
+    """A disk sector as a polygon: its centre, then its arc (angles in degrees)."""
+    angle = np.radians(np.linspace(start, end, steps))
+    return np.vstack([centre, centre + eps * np.c_[np.cos(angle), np.sin(angle)]])
+
+
+def inflation_animation(curve, epsilons, start=0, name="the pentagon"):
+    """Both inflations of a clockwise convex polygon, one frame per ``eps``: the rectangles on the
+    edges, the sectors or kites at the corners, the boundary ``ddg`` computes, and the formula's
+    area next to the area of the region measured by shapely. ``frame_areas`` holds
+    ``(method, eps, formula, measured)`` for every frame and method."""
+    names = {"minkowski": "Minkowski sum", "offset": "offset with kites"}
+    colors = {"minkowski": COLORS["orange"], "offset": COLORS["green"]}
+    (x0, y0), (x1, y1) = curve.vertices.min(axis=0) - 1.1 * max(epsilons), curve.vertices.max(axis=0) + max(epsilons)
+    records, frames = [], []
+    for eps in epsilons:
+        scene = Scene([{"box": (x0, y0, x1, y1), "px": (250, round(250 * (y1 - y0) / (x1 - x0))), "title": title}
+                       for title in names.values()])
+        rectangles, sectors, kites = inflation_pieces(curve, eps)
+        numbers = []
+        for panel, method in enumerate(INFLATIONS):
+            grey, blue, color = COLORS["grey"], COLORS["blue"], colors[method]
+            scene.line(panel, curve.vertices, grey, 1, True, grey)
+            for rectangle in rectangles:
+                scene.line(panel, rectangle, blue, 0.5, True, blue, opacity=0.35)
+            corners = kites if method == "offset" else [_sector(c, eps, a, b) for c, a, b in sectors]
+            for piece in corners:
+                scene.line(panel, piece, color, 0.5, True, color, opacity=0.7)
+            boundary = curve.inflate(eps, method).vertices
+            scene.line(panel, boundary[:: max(1, len(boundary) // 150)], closed=True)  # 150 points are plenty
+            scene.line(panel, curve.vertices, closed=True)
+            formula = curve.inflated_area(eps, method)
+            measured = measured_region(curve, eps, method).area
+            records.append((method, eps, formula, measured))
+            numbers.append(f"{names[method]}: formula {formula:.4f}, measured {measured:.4f}")
+        scene.summary = f"ε = {eps:.2f}. " + "; ".join(numbers)
+        scene.alt = (f"{name.capitalize()} inflated by ε = {eps:.2f} in two ways: rectangles on the edges (blue) and, "
+                     "at the corners, disk sectors (left, orange) or kites (right, green). " + "; ".join(numbers) + ".")
+        frames.append(scene)
+    animation = Animation(frames, "ε", np.round(epsilons, 3), title="Inflation", start=start)
+    animation.frame_areas = records
+    return animation
+
+
+def flow_animation(runs, frames=16):
+    """Snapshots of curve-shortening flows, one panel per curve with every flow drawn over its start.
+
+    ``runs`` maps a curve's name to ``{kind: FlowRun}`` (see ``ddg.flow.flow``, run with at least
+    ``frames`` snapshots); frame ``j`` shows snapshot ``j`` of every run.
+    """
+    boxes = []
+    for by_kind in runs.values():
+        first = next(iter(by_kind.values())).snapshots[0][1].vertices
+        (x0, y0), (x1, y1) = first.min(axis=0), first.max(axis=0)
+        pad = 0.08 * max(x1 - x0, y1 - y0)
+        box = (x0 - pad, y0 - pad, x1 + pad, y1 + pad)
+        boxes.append({"box": box, "px": (140, round(140 * (box[3] - box[1]) / (box[2] - box[0]))),
+                      "margin": (6, 6, 26, 6)})  # no axes
+    scenes = []
+    for frame in range(frames):
+        scene = Scene(boxes)
+        for panel, (name, by_kind) in enumerate(runs.items()):
+            scene.line(panel, next(iter(by_kind.values())).snapshots[0][1].vertices, COLORS["grey"], 1, True)
+            for kind, run in by_kind.items():
+                t, curve = run.snapshots[min(frame, len(run.snapshots) - 1)]
+                scene.line(panel, curve.vertices, FLOW_COLORS[kind], 1.5, True)
+            scene.text(panel, 70, -10, f"{name}, t = {t:.2f}", "middle", 13, space="px")
+        kinds = list(next(iter(runs.values())))
+        scene.summary = ", ".join(f"{k} flow in {c}" for k, c in zip(kinds, ("blue", "orange", "green"))) + \
+            "; the starting curve in grey."
+        scene.alt = (f"Frame {frame + 1} of {frames}: " + ", ".join(runs) + " shrinking under the flows, drawn on top "
+                     "of each other over their starting curves.")
+        scenes.append(scene)
+    return Animation(scenes, "snapshot", range(1, frames + 1), title="Curve-shortening flow")

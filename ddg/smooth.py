@@ -145,6 +145,19 @@ class SmoothCurve:
         return SmoothCurve(mapped(self.gamma, b), mapped(self.dgamma, (0.0, 0.0)), mapped(self.ddgamma, (0.0, 0.0)),
                            self.t0, self.t1, self.closed, name or self.name)
 
+    def reversed(self, name=None):
+        """The same curve traversed backwards, ``t -> t0 + t1 - t``: its curvature changes sign."""
+        t0, t1 = self.t0, self.t1
+
+        def backwards(f, sign):
+            def g(t):
+                x, y = f(t0 + t1 - np.asarray(t, dtype=float))
+                return sign * np.asarray(x), sign * np.asarray(y)
+            return g
+
+        return SmoothCurve(backwards(self.gamma, 1.0), backwards(self.dgamma, -1.0), backwards(self.ddgamma, 1.0),
+                           t0, t1, self.closed, name or f"{self.name}, reversed")
+
     def position(self, t):
         """``gamma(t)``, shape ``t.shape + (2,)``."""
         return _points(self.gamma, t)

@@ -121,3 +121,20 @@ def test_the_prose_check_finds_wrapped_lines_that_become_markup():
     assert prose_problems("```{note}\nwhere\n- a list starts in a directive\n```") != []
     assert prose_problems("Text.\n\n- a list\n- of two\n\n# A heading\n\n$$x\n- y$$") == []
     assert prose_problems("```{solution-start} ex\n:class: dropdown\n```\n1. first\n2. second") == []
+
+
+def test_the_notebook_check_finds_long_code_a_reader_sees(tmp_path):
+    """A chapter reads as a lecture: at most 30 lines of code shown; folded cells and solutions aside."""
+    from tools.notebooks import check
+
+    def cell(lines, tags=()):
+        return {"cell_type": "code", "source": "x = 1\n" * lines, "metadata": {"tags": list(tags)}, "outputs": []}
+
+    def problems(*cells):
+        path = tmp_path / "nb.ipynb"
+        path.write_text(json.dumps({"cells": list(cells), "metadata": {}, "nbformat": 4, "nbformat_minor": 5}))
+        return [p for p in check(path) if "lines shown" in p]
+
+    assert problems(cell(30)) == []
+    assert problems(cell(31)) == ["nb.ipynb cell 0: 31 lines shown on the page (fold it or split it: at most 30)"]
+    assert problems(cell(90, ["hide-input"]), cell(90, ["remove-cell"])) == []

@@ -45,7 +45,7 @@ def test_an_answer_that_never_returns_gets_a_verdict_within_the_time_limit():
     start = time.monotonic()
     feedback = checks.check_turning_angles(endless, seed=0)
     assert not feedback and "did not return within 10 s" in feedback.problem
-    assert time.monotonic() - start < checks.TIME_LIMIT + 2
+    assert time.monotonic() - start < checks.TIME_LIMIT + 10  # a loaded machine starts processes slowly
 
 
 def test_the_quantity_the_exercise_asks_for_is_switched_off_and_named_by_its_public_name():
@@ -157,7 +157,7 @@ def test_nothing_an_answer_starts_outlives_its_verdict(namespace, monkeypatch):
     start = time.monotonic()
     feedback = checks.check_turning_angles(escapes, seed=0)
     assert feedback, feedback  # it answered right; what it left behind was stopped, not waited for
-    assert time.monotonic() - start < 5
+    assert time.monotonic() - start < 25  # the grandchild sleeps 30 s: waiting for it would take longer
     time.sleep(0.2)
     assert not alive(int(marker.read_text())), "a process the answer started lives on"
     marker.unlink()

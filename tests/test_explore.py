@@ -3,6 +3,7 @@
 import base64
 import gzip
 import json
+import pathlib
 import re
 import xml.etree.ElementTree as ET
 
@@ -71,8 +72,8 @@ def test_every_reachable_state_is_packed_and_drawn(explorer):
     count = np.prod([len(c["options"]) for c in data["controls"]])
     assert len(data["states"]) == count and data["value"] in data["states"]
     for state in data["states"].values():
-        assert all(0 <= i < len(data["items"]) for i in state["i"]) and state["t"] and state["a"]
-        assert 0 <= state["p"] < len(data["panels"])
+        assert all(0 <= i < len(data["items"]) for i in state["items"]) and state["summary"] and state["alt"]
+        assert 0 <= state["panels"] < len(data["panels"])
     first = explorer.scene(**explorer.values())
     for i in range(len(first.panels)):
         ET.fromstring(svg(first, i))  # well-formed SVG, for pages without JavaScript
@@ -122,4 +123,19 @@ def test_animation_plays_its_scenes_in_order():
     for bad in (3, -1, 1.5, True):
         with pytest.raises(ValueError, match="start must be a frame index from 0 to 2"):
             Animation(frames, "t", [0.0, 0.1, 0.2], start=bad)
-    assert [s["t"] for s in data["states"].values()] == ["t = 0.0", "t = 0.1", "t = 0.2"]
+    assert [s["summary"] for s in data["states"].values()] == ["t = 0.0", "t = 0.1", "t = 0.2"]
+
+
+def test_scene_items_use_only_the_documented_keys():
+    """ddg/scene.py documents each item key once; the player (ddg-player.js) reads the same names."""
+    import ddg.scene
+
+    documented = set(re.findall(r"^(\w+) {2,}", ddg.scene.__doc__, re.M)) - {"key"}
+    player = (pathlib.Path(ddg.__file__).parents[1] / "book" / "_assets" / "ddg-player.js").read_text()
+    used = set()
+    for explorer in (PolygonExplorer(), InflationExplorer(), VertexExplorer(0.3, 0.3)):
+        for item in packed(explorer)["items"]:
+            used |= set(item)
+    assert used <= documented, used - documented
+    assert {"kind", "panel", "points", "color", "radius", "values", "labels", "handle", "bar_width"} <= used
+    assert all(f"item.{key}" in player for key in documented - {"kind", "panel", "points"}), documented

@@ -25,6 +25,9 @@ BLOCKS = {"heading_open": "a heading", "bullet_list_open": "a list", "ordered_li
           "blockquote_open": "a quote", "hr": "a rule"}
 
 
+MAX_SHOWN = 30  # lines of code a reader sees without unfolding anything
+
+
 def _markdown():
     """A parser that reads markdown as the book's MyST does (math, directives, targets, roles)."""
     from markdown_it import MarkdownIt
@@ -100,6 +103,12 @@ def check(path, fix=False):
     md = _markdown()
     problems = [f"{path.name} cell {i}: {problem}" for i, cell in enumerate(data["cells"]) if cell["cell_type"] == "markdown"
                 for problem in prose_problems("".join(cell["source"]), md)]
+    first, rest = solution_cells(data["cells"])
+    for i, cell in enumerate(data["cells"]):
+        lines = len("".join(cell["source"]).splitlines())
+        hidden = {"remove-cell", "hide-input", "hide-cell"} & set(cell["metadata"].get("tags", []))
+        if cell["cell_type"] == "code" and lines > MAX_SHOWN and not hidden and i not in rest:
+            problems.append(f"{path.name} cell {i}: {lines} lines shown on the page (fold it or split it: at most {MAX_SHOWN})")
     prose = len(problems)
     for i, (cell, fold) in enumerate(zip(data["cells"], folding(data["cells"]))):
         if cell["metadata"].get("jupyter", {}) != fold:

@@ -10,10 +10,12 @@
 
   function hex(c) { return [1, 3, 5].map(function (k) { return parseInt(c.slice(k, k + 2), 16); }); }
 
-  function ramp(stops, value) {  // the colour of value in [0, 1]: the same ramp as ddg.explore.RAMP
+  function ramp(stops, value) {  // the colour of value in [0, 1]: ddg.scene.ramp
     value = Math.min(Math.max(value, 0), 1);
     var i = value <= 0.5 ? 0 : 1, t = value * 2 - i, a = hex(stops[i]), b = hex(stops[i + 1]);
-    return "rgb(" + a.map(function (x, k) { return Math.round(x + t * (b[k] - x)); }).join(",") + ")";
+    return "#" + a.map(function (x, k) {
+      return ("0" + Math.floor(x + t * (b[k] - x) + 0.5).toString(16)).slice(-2);
+    }).join("");
   }
 
   function escape(s) {
@@ -130,15 +132,16 @@
     }, c.interval || 250);
   };
 
+  // point, path and render mirror ddg/scene.py (point, path, render), item keys as documented there.
   Player.prototype.point = function (panel, x, y) {  // data coordinates to the panel's pixels
     var b = panel.box, w = panel.px[0], h = panel.px[1];
     return [(x - b[0]) / (b[2] - b[0]) * w, h - (y - b[1]) / (b[3] - b[1]) * h];
   };
 
-  Player.prototype.path = function (panel, d, closed) {
+  Player.prototype.path = function (panel, points, closed) {
     var parts = [];
-    for (var i = 0; i < d.length; i += 2) {
-      var p = this.point(panel, d[i], d[i + 1]);
+    for (var i = 0; i < points.length; i += 2) {
+      var p = this.point(panel, points[i], points[i + 1]);
       parts.push(p[0].toFixed(1) + "," + p[1].toFixed(1));
     }
     return "M" + parts.join("L") + (closed ? "Z" : "");
@@ -147,39 +150,43 @@
   Player.prototype.render = function (index, panel, items) {
     var data = this.data, out = [], self = this;
     items.forEach(function (item) {
-      if (item.p !== index) { return; }
-      var d = item.d && item.d.$ !== undefined ? data.pool[item.d.$] : item.d, i;
-      if (item.k === "line") {
-        out.push('<path d="' + self.path(panel, d, item.z) + '" stroke="' + item.s + '" stroke-width="' + item.w +
-                 '" fill="' + (item.f || "none") + '"' + (item.dash ? ' stroke-dasharray="' + item.dash + '"' : "") +
-                 (item.o ? ' opacity="' + item.o + '"' : "") + "/>");
-      } else if (item.k === "dots") {
+      if (item.panel !== index) { return; }
+      var d = item.points && item.points.pool !== undefined ? data.pool[item.points.pool] : item.points, i;
+      var color = item.color;
+      if (item.kind === "line") {
+        out.push('<path d="' + self.path(panel, d, item.closed) + '" stroke="' + color + '" stroke-width="' +
+                 item.width + '" fill="' + (item.fill || "none") + '"' +
+                 (item.dash ? ' stroke-dasharray="' + item.dash + '"' : "") +
+                 (item.opacity ? ' opacity="' + item.opacity + '"' : "") + "/>");
+      } else if (item.kind === "dots") {
         for (i = 0; i < d.length; i += 2) {
-          var p = self.point(panel, d[i], d[i + 1]), label = item.l ? item.l[i / 2] : null;
-          var fill = item.c ? ramp(data.ramp, item.c[i / 2]) : item.s;
-          out.push('<circle cx="' + p[0].toFixed(1) + '" cy="' + p[1].toFixed(1) + '" r="' + item.r + '" fill="' +
-                   fill + '"' + (label ? ' tabindex="0" role="img" aria-label="' + escape(label) + '" data-label="' +
-                   escape(label) + '"' : "") + (item.h ? ' class="ddg-handle"' : "") + ">" +
+          var p = self.point(panel, d[i], d[i + 1]), label = item.labels ? item.labels[i / 2] : null;
+          var fill = item.values ? ramp(data.ramp, item.values[i / 2]) : color;
+          out.push('<circle cx="' + p[0].toFixed(1) + '" cy="' + p[1].toFixed(1) + '" r="' + item.radius +
+                   '" fill="' + fill + '"' + (label ? ' tabindex="0" role="img" aria-label="' + escape(label) +
+                   '" data-label="' + escape(label) + '"' : "") + (item.handle ? ' class="ddg-handle"' : "") + ">" +
                    (label ? "<title>" + escape(label) + "</title>" : "") + "</circle>");
         }
-      } else if (item.k === "arrows") {
+      } else if (item.kind === "arrows") {
         for (i = 0; i < d.length; i += 4) {
           var a = self.point(panel, d[i], d[i + 1]), b = self.point(panel, d[i + 2], d[i + 3]);
           out.push('<line x1="' + a[0].toFixed(1) + '" y1="' + a[1].toFixed(1) + '" x2="' + b[0].toFixed(1) +
-                   '" y2="' + b[1].toFixed(1) + '" stroke="' + item.s + '" stroke-width="' + item.w + '"/>' +
-                   '<circle cx="' + b[0].toFixed(1) + '" cy="' + b[1].toFixed(1) + '" r="2.5" fill="' + item.s + '"/>');
+                   '" y2="' + b[1].toFixed(1) + '" stroke="' + color + '" stroke-width="' + item.width + '"/>' +
+                   '<circle cx="' + b[0].toFixed(1) + '" cy="' + b[1].toFixed(1) + '" r="2.5" fill="' + color + '"/>');
         }
-      } else if (item.k === "bars") {
+      } else if (item.kind === "bars") {
         item.x.forEach(function (x, j) {
-          var h = item.h[j], a = self.point(panel, x - item.b / 2, Math.max(h, 0)), b = self.point(panel, x + item.b / 2, Math.min(h, 0));
+          var h = item.heights[j], half = item.bar_width / 2;
+          var a = self.point(panel, x - half, Math.max(h, 0)), b = self.point(panel, x + half, Math.min(h, 0));
           out.push('<rect x="' + a[0].toFixed(1) + '" y="' + a[1].toFixed(1) + '" width="' + (b[0] - a[0]).toFixed(1) +
-                   '" height="' + (b[1] - a[1]).toFixed(1) + '" fill="' + item.c[j] + '"/>');
+                   '" height="' + (b[1] - a[1]).toFixed(1) + '" fill="' + item.colors[j] + '"/>');
         });
-      } else if (item.k === "text") {
-        var at = item.px ? [item.x, item.y] : self.point(panel, item.x, item.y);
-        out.push('<text x="' + at[0].toFixed(1) + '" y="' + at[1].toFixed(1) + '" text-anchor="' + item.a +
-                 '" font-size="' + item.z + '" fill="' + item.s + '"' + (item.r ? ' transform="rotate(' + item.r +
-                 " " + at[0].toFixed(1) + " " + at[1].toFixed(1) + ')"' : "") + ">" + escape(item.t) + "</text>");
+      } else if (item.kind === "text") {
+        var at = item.pixels ? [item.x, item.y] : self.point(panel, item.x, item.y);
+        out.push('<text x="' + at[0].toFixed(1) + '" y="' + at[1].toFixed(1) + '" text-anchor="' + item.anchor +
+                 '" font-size="' + item.size + '" fill="' + color + '"' + (item.rotate ? ' transform="rotate(' +
+                 item.rotate + " " + at[0].toFixed(1) + " " + at[1].toFixed(1) + ')"' : "") + ">" +
+                 escape(item.text) + "</text>");
       }
     });
     return out.join("");
@@ -188,7 +195,7 @@
   Player.prototype.draw = function () {
     var self = this, data = this.data, state = data.states[this.key()];
     if (!state) { return; }
-    var items = state.i.map(function (i) { return data.items[i]; }), panels = data.panels[state.p], m;
+    var items = state.items.map(function (i) { return data.items[i]; }), panels = data.panels[state.panels], m;
     this.current = panels;
     this.panels.forEach(function (svg, index) {
       var panel = panels[index], w = panel.px[0], h = panel.px[1];
@@ -198,8 +205,8 @@
       svg.setAttribute("aria-label", panel.title || "");
       svg.innerHTML = self.render(index, panel, items);
     });
-    this.summary.innerHTML = state.t;
-    this.caption.textContent = state.a;
+    this.summary.innerHTML = state.summary;
+    this.caption.textContent = state.alt;
     this.detail.textContent = "";
     data.controls.forEach(function (c) {
       var input = self.inputs[c.name], shown = (c.shown || c.options)[self.values[c.name]];
