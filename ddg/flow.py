@@ -249,7 +249,8 @@ class _Frame:
         return DiscreteCurve(np.ldexp(local.vertices, self.exponent) + self.origin)
 
     def time(self, local_time):
-        return float(np.ldexp(local_time, 2 * self.exponent))
+        with np.errstate(over="ignore"):  # inf: a time beyond the floats, which flow() refuses
+            return float(np.ldexp(local_time, 2 * self.exponent))
 
     def local_time(self, t):
         return float(np.ldexp(t, -2 * self.exponent))
@@ -314,6 +315,11 @@ def flow(curve, kind="sine", t_end=1.0, *, method="explicit", dt=None, safety=0.
         power = np.log10(lifetime) + 2 * frame.exponent * np.log10(2)
         raise ValueError(f"the curve's lifetime under the flow, about 1e{power:.0f}, is beyond the range of floats: "
                          "scale the curve (times scale with the square of its size)")
+    if dt is not None and not degenerate and min(end, lifetime) / frame.local_time(dt) > max_steps:
+        needed = min(end, lifetime) / frame.local_time(dt)
+        raise ValueError(f"dt = {dt!r} would take about {needed:.1e} steps to reach t = "
+                         f"{frame.time(min(end, lifetime)):.4g} (t_end or the curve's end, whichever comes first), "
+                         f"more than max_steps = {max_steps}: take a larger dt, or leave it out for a stable one")
     run = _Run(settings, frame, start, end, end if degenerate else min(end, lifetime))
     if degenerate:
         run.record()

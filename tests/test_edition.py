@@ -1,6 +1,7 @@
 """The student edition: exercises kept, solutions dropped, starters that raise, checks open and kept."""
 
 import json
+import re
 import pathlib
 
 import nbformat
@@ -71,3 +72,34 @@ def test_changed_notebooks_are_kept_unless_forced(tmp_path):
     edition.main(["--check-unchanged", str(out / "book"), "--force"])  # make clean FORCE=1 may delete it
     edition.write_edition(ROOT, out, force=True)  # make student FORCE=1 overwrites it
     assert "my_answer" not in answer.read_text() and not edition.changed_notebooks(out / "book")
+
+
+STARTER_CASES = {
+    "a class": ("class Walker:\n    '''Walks.'''\n    def step(self, x):\n        return x + 1\n",
+                ["class Walker:", "def step(self, x):"]),
+    "async def": ("async def fetch(x):\n    return x\n", ["async def fetch(x):"]),
+    "decorators": ("import functools\n@functools.cache\ndef f(n):\n    return n\n", ["@functools.cache", "def f(n):"]),
+    "a docstring holding triple quotes": ("def f():\n    '''Say \"\"\"hi\"\"\".'''\n    return 1\n", ["def f():"]),
+    "a docstring ending in a quote": ('def f():\n    """Say "hi\\""""\n    return 1\n', ["def f():"]),
+}
+
+
+@pytest.mark.parametrize("case", list(STARTER_CASES))
+def test_a_starter_keeps_every_definition_and_compiles(case):
+    source, kept = STARTER_CASES[case]
+    code = edition.starter(source)
+    for line in kept:
+        assert line in code, code
+    namespace = {}
+    exec(compile(code, "<starter>", "exec"), namespace)  # noqa: S102: it compiles and runs
+    reference = {}
+    exec(source, reference)  # noqa: S102
+    for name, value in reference.items():
+        if callable(value) and not name.startswith("__") and getattr(value, "__doc__", None):
+            assert namespace[name].__doc__ == value.__doc__, name  # the docstring, exactly
+
+
+@pytest.mark.parametrize("line", ["%matplotlib inline", "!pip install shapely", "  %timeit f()"])
+def test_a_magic_in_a_solution_is_a_clear_error(line):
+    with pytest.raises(ValueError, match=re.escape(f"must be plain Python, but it has the line '{line.strip()}'")):
+        edition.starter(f"import numpy as np\n{line}\ndef f(x):\n    return x\n")

@@ -1,4 +1,4 @@
-"""ddg under hostile input (issue 10): one test per item, then adversarial polygons (hypothesis).
+"""ddg under hostile input: a test per behaviour that broke once, then adversarial polygons (hypothesis).
 
 Accuracy is judged against the exact geometry of the float input: edges, cross and dot products
 are computed exactly with ``fractions.Fraction`` (a Python loop over a dozen vertices, fine in a
@@ -35,7 +35,7 @@ AREA_RATES = {  # d(area)/dt of a clockwise regular n-gon (chapter 9)
 }
 
 
-# ---------------------------------------------------------------- item 11: accurate flows
+# ---------------------------------------------------------------- accurate flows
 
 
 @pytest.mark.parametrize("method, c", [("explicit", 0.25), ("semi-implicit", 0.75)])
@@ -88,7 +88,7 @@ def test_remaining_lifetime_of_a_regular_polygon_is_exact():
         assert remaining_lifetime(p, kind) == pytest.approx(p.signed_area / rate(9), rel=1e-12)
 
 
-# ---------------------------------------------------------------- item 12: linear-cost steps, budgets
+# ---------------------------------------------------------------- linear-cost steps, budgets
 
 
 def dense(a, b, c):
@@ -130,7 +130,7 @@ def test_every_run_has_a_budget_and_says_when_it_is_spent():
     assert seconds.seconds > 0.05
 
 
-# ---------------------------------------------------------------- item 13: inflate on valid polygons
+# ---------------------------------------------------------------- inflate on valid polygons
 
 
 def test_inflate_a_nearly_straight_vertex_and_by_zero():
@@ -166,7 +166,7 @@ def test_inflate_names_the_users_vertex():
         c.inflate(1.7e308)
 
 
-# ---------------------------------------------------------------- item 14: the end of a run
+# ---------------------------------------------------------------- the end of a run
 
 
 def test_a_run_that_stops_early_records_its_final_state():
@@ -193,7 +193,7 @@ def test_flow_is_the_same_at_every_scale(method):
         np.testing.assert_allclose([t / r**2 for t, _ in run.snapshots], [t for t, _ in runs[1.0].snapshots], rtol=1e-12)
 
 
-# ---------------------------------------------------------------- item 15: extreme magnitudes
+# ---------------------------------------------------------------- extreme magnitudes
 
 
 @pytest.mark.parametrize("scale", [1e-300, 1e-170, 1e-150, 1.0, 1e150, 1e154, 1e160, 1e300])
@@ -228,7 +228,7 @@ def test_a_turn_within_1e_170_of_a_reversal():
         ddg.DiscreteCurve([[0, 0], [2, 0], [1, 1e-310], [1, 1]]).curvature("tangent")
 
 
-# ---------------------------------------------------------------- item 16: adaptive quadrature
+# ---------------------------------------------------------------- adaptive quadrature
 
 
 def ellipse_perimeter(a, b):
@@ -273,7 +273,7 @@ def test_quadrature_that_cannot_converge_says_where():
         wild.length
 
 
-# ---------------------------------------------------------------- item 17: validation
+# ---------------------------------------------------------------- validation
 
 
 @pytest.mark.parametrize(
@@ -315,6 +315,182 @@ def test_the_bisector_normal_at_a_reversal_and_the_flow_there():
     for kind in ddg.CURVATURES:  # psi = +pi is a convention: the turning number the flow keeps is not defined
         with pytest.raises(ValueError, match="turns straight back at vertex 1"):
             flow(spike, kind, 0.1, progress=False)
+
+
+# ---------------------------------------------------------------- exact areas anywhere
+
+
+@pytest.mark.parametrize("s", [1e12, 1e16, 1e17, 1e300])
+def test_a_thin_triangle_far_from_the_origin_has_its_exact_area(s):
+    # shoelace of (0, 0), (1, 0), (s, s): (1 s - 0) / 2 counter-clockwise, so -s/2 clockwise-positive
+    c = ddg.DiscreteCurve([[0, 0], [1, 0], [s, s]])
+    assert c.signed_area == pytest.approx(-s / 2, rel=4 * EPS)
+    assert ddg.DiscreteCurve([[0, 0], [1e-300, 0], [1e300, 1e300]]).signed_area == pytest.approx(-0.5, rel=4 * EPS)
+
+
+def test_a_square_anywhere_has_area_one_and_inflates_by_the_formula():
+    for center in (1e8, 1e15, -4e15):  # where 1 is still a step between floats
+        c = ddg.DiscreteCurve(SQUARE + center)
+        exact = [Fraction(x) for x in (SQUARE + center).ravel()]  # the float input, exactly
+        xs, ys = exact[0::2], exact[1::2]
+        area = -sum(xs[i] * ys[i - 3] - xs[i - 3] * ys[i] for i in range(4)) / 2  # i - 3 = i + 1 mod 4
+        assert c.signed_area == pytest.approx(float(area), rel=4 * EPS)
+        assert c.inflated_area(0.5) == pytest.approx(float(area) + 0.5 * c.length + np.pi / 4, rel=8 * EPS)
+    with pytest.raises(ValueError, match="are equal"):
+        ddg.DiscreteCurve(SQUARE + 1e17)  # 1e17 + 1 is 1e17: the square collapses
+
+
+# ---------------------------------------------------------------- turning numbers respect mirror images
+
+
+@pytest.mark.parametrize("vertices", [
+    [[0, 0], [1, 0], [0, 1e-17], [-0.3, 5]],  # a turn of -pi + 3e-18: to rounding, a reversal
+    [[0, 0], [2, 0], [1, 0], [1, 1]],  # an exact reversal at vertex 1
+])
+def test_a_reversal_has_no_turning_number_and_neither_has_its_mirror_image(vertices):
+    mirror = np.array(vertices, dtype=float) * [1, -1]
+    for polygon in (vertices, mirror):
+        with pytest.raises(ValueError, match="turns straight back at vertex"):
+            ddg.DiscreteCurve(polygon).turning_number
+
+
+def test_turning_numbers_of_mirror_images_are_opposite():
+    rng = np.random.default_rng(20)
+    for _ in range(200):
+        v = rng.normal(size=(int(rng.integers(3, 12)), 2))
+        c, mirror = ddg.DiscreteCurve(v), ddg.DiscreteCurve(v * [1, -1])
+        assert c.turning_number == -mirror.turning_number == -ddg.DiscreteCurve(v[::-1]).turning_number
+
+
+# ---------------------------------------------------------------- a curve's arrays cannot be changed
+
+
+def test_every_array_a_curve_hands_out_is_read_only_with_its_base():
+    c = ddg.regular_polygon(16)
+    names = ["vertices", "edges", "edge_lengths", "tangents", "normals", "turning_angles", "dual_lengths",
+             "bisector_normals"]
+    length, gradient = c.length, c.length_gradient()
+    for name in names:
+        array = getattr(c, name)
+        with pytest.raises(ValueError, match="read-only"):
+            array[0] = 1000
+        base = array
+        while isinstance(base, np.ndarray):
+            with pytest.raises(ValueError):
+                base.flags.writeable = True
+            base = base.base
+    for kind in ddg.CURVATURES:
+        with pytest.raises(ValueError, match="read-only"):
+            c.curvature(kind)[0] = 0
+    assert c.length == length and np.array_equal(c.length_gradient(), gradient)
+
+
+@pytest.mark.parametrize("copy", ["pickle", "deepcopy", "copy"])
+def test_a_copied_curve_is_read_only_and_consistent(copy):
+    import copy as copying
+    import pickle
+
+    c = ddg.DiscreteCurve(SQUARE)
+    c.length, c.signed_area  # cached before copying
+    twin = {"pickle": lambda: pickle.loads(pickle.dumps(c)), "deepcopy": lambda: copying.deepcopy(c),
+            "copy": lambda: copying.copy(c)}[copy]()
+    with pytest.raises(ValueError, match="read-only"):
+        twin.vertices[0] = [3, 3]
+    assert (twin.length, twin.signed_area) == (4.0, 1.0)
+
+
+# ---------------------------------------------------------------- flows far away, long and short
+
+
+def test_a_flow_far_from_the_origin_is_the_flow_at_the_origin():
+    kind = "sine"
+    for center, r in (((1e15, 0), 10.0), ((1e12, 0), 1.0), ((-3e8, 7e8), 2.0)):
+        there = ddg.regular_polygon(32, r, center=center)  # its vertices rounded to the floats there
+        here = ddg.DiscreteCurve(there.vertices - center)  # the same polygon, moved exactly
+        t_end = 0.6 * remaining_lifetime(here, kind)
+        a, b = (flow(c, kind, t_end, progress=False) for c in (here, there))
+        assert b.stopped == "reached t_end" and b.areas[-1] / b.areas[0] == pytest.approx(0.4, abs=5e-3)
+        np.testing.assert_allclose(b.areas, a.areas, rtol=1e-12)
+        np.testing.assert_allclose(b.snapshots[-1][1].vertices - center, a.snapshots[-1][1].vertices, atol=1e-15 * abs(
+            np.array(center)).max())
+    far = flow(ddg.regular_polygon(16, 1.0, center=(1e12, 0)), kind, 0.3, method="semi-implicit", progress=False)
+    assert far.stopped == "reached t_end"
+
+
+def test_a_flow_run_until_it_vanishes_keeps_a_history():
+    run = flow(ddg.regular_polygon(64), "sine", 1000.0, progress=False)  # t_end far past its life (0.5)
+    assert "vanished" in run.stopped and len(run.times) >= 20
+    assert np.diff(run.times).max() < 0.1 * run.times[-1]  # spaced over the curve's life, not over t_end
+    assert len(run.snapshots) >= 10
+
+
+def test_more_snapshots_than_steps_are_as_many_as_steps():
+    run = flow(ddg.regular_polygon(16), "sine", 0.1, snapshots=10**7, progress=False)
+    assert 2 <= len(run.snapshots) <= run.steps + 1
+
+
+@pytest.mark.parametrize("r", [1e-150, 1e-100, 1e100, 1e150])
+def test_a_tiny_or_huge_curve_flows_like_a_unit_one(r):
+    unit = flow(ddg.regular_polygon(16), "sine", 0.2, progress=False)
+    scaled = flow(ddg.regular_polygon(16, r), "sine", 0.2 * r * r, progress=False)
+    assert scaled.stopped == "reached t_end" and scaled.steps == unit.steps
+    np.testing.assert_allclose(scaled.areas / (r * r), unit.areas, rtol=1e-12)
+
+
+def test_a_step_too_small_to_finish_or_a_life_beyond_the_floats_is_refused():
+    with pytest.raises(ValueError, match="would take about 1.0e\\+299 steps"):
+        flow(ddg.regular_polygon(16), "sine", 0.1, dt=1e-300)
+    run = flow(ddg.regular_polygon(16), "sine", 1e300, progress=False)  # ends with the curve, not at 1e300
+    assert "vanished" in run.stopped and run.times[-1] < 1
+    for r in (1e200, 1e-200):  # a life of about r^2 / 2: 1e400 and 1e-400 are no floats
+        with pytest.raises(ValueError, match="beyond the range of floats"):
+            flow(ddg.regular_polygon(16, r), "sine", 1e-300)
+
+
+def test_remesh_keeps_the_polyline_or_says_why_not():
+    from ddg.flow import remesh
+
+    open_curve = ddg.DiscreteCurve([[0, 0], [1, 0], [1, 1]], closed=False)
+    again = remesh(open_curve)
+    assert not again.closed and again.length == pytest.approx(open_curve.length)
+    np.testing.assert_allclose(again.edge_lengths, open_curve.length / (len(again) - 1))
+    for reversal in ([[0, 0], [1, 0], [2, 0]], [[0, 0], [1e-20, 0], [2e-20, 0], [1, 1]]):
+        with pytest.raises(ValueError, match="turns straight back"):
+            remesh(ddg.DiscreteCurve(reversal))
+
+
+# ---------------------------------------------------------------- smooth curves at any scale
+
+
+@pytest.mark.parametrize("r", [1e-300, 1e-160, 1.0, 1e155, 1e300])
+def test_circles_and_round_ellipses_of_any_size_have_their_length(r):
+    assert smooth.circle(r).length == pytest.approx(2 * np.pi * r, rel=1e-13)
+    assert smooth.ellipse(r, r).length == pytest.approx(2 * np.pi * r, rel=1e-13)
+    assert smooth.ellipse(r, r).total_curvature() == pytest.approx(2 * np.pi, rel=1e-13)
+
+
+def test_a_very_eccentric_ellipse_says_why_it_cannot_be_integrated():
+    with pytest.raises(ValueError, match="the tip of a very eccentric ellipse"):
+        smooth.ellipse(1, 1e-12).total_curvature()
+
+
+@pytest.mark.parametrize("make, message", [
+    (lambda: smooth.circle(1, clockwise="no"), "clockwise must be True or False"),
+    (lambda: smooth.ellipse().arc_length([-1, 100]), "t must lie in"),
+    (lambda: smooth.from_curvature(lambda s: 1 + 0 * s, 2 * np.pi, samples=0), "samples"),
+    (lambda: smooth.from_curvature(lambda s: 1 + 0 * s, float("nan")), "length"),
+    (lambda: smooth.from_curvature(lambda s: 1 + 0 * s, -1.0), "length"),
+])
+def test_smooth_curves_refuse_bad_arguments(make, message):
+    with pytest.raises(ValueError, match=message):
+        make()
+
+
+def test_inflating_a_counter_clockwise_curve_is_refused_as_erosion():
+    ccw = ddg.regular_polygon(7, clockwise=False)
+    for call in (lambda: ccw.inflated_area(2.0), lambda: ccw.inflate(2.0)):
+        with pytest.raises(ValueError, match="counter-clockwise.*erode"):
+            call()
 
 
 # ---------------------------------------------------------------- adversarial polygons (hypothesis)

@@ -207,10 +207,8 @@ class MinkowskiArea(Exercise):
 
     def expected(self, call):
         """The area of the sum, measured by shapely (round joins of 1024 segments per quarter circle)."""
-        import shapely
-
         curve, eps = (g.build(a) for a in call.args)
-        return np.float64(shapely.Polygon(curve.vertices).buffer(eps, quad_segs=1024).area)
+        return np.float64(g.shapely_module().Polygon(curve.vertices).buffer(eps, quad_segs=1024).area)
 
     def close(self, got, want, call):
         eps = call.args[1]

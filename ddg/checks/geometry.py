@@ -10,6 +10,7 @@ never depends on how another process would round a random draw.
 import numpy as np
 
 from .. import smooth
+from .._extras import missing
 from ..curve import DiscreteCurve, regular_polygon
 
 
@@ -109,6 +110,15 @@ def bean(rng):
     return spec, np.concatenate([t[bends > 0][:4], t[bends < 0][:4]])
 
 
+def shapely_module():
+    """shapely, which measures polygons for the inflation exercises (the extra [checks])."""
+    try:
+        import shapely
+    except ImportError as error:
+        raise missing("checks", error) from error
+    return shapely
+
+
 def star_shaped(rng):
     """A random clockwise star-shaped polygon with a reflex vertex, and room to inflate by ``eps <= 0.2``.
 
@@ -116,8 +126,7 @@ def star_shaped(rng):
     than 100 degrees, edges that share no vertex at least 0.5 apart: the conditions of the book's
     theorem on the Minkowski sum of a simple polygon hold for ``eps < 0.25``.
     """
-    import shapely
-
+    shapely = shapely_module()
     while True:  # candidates in batches: about one in a thousand has room
         n = int(rng.integers(5, 8))
         t = 2 * np.pi * (np.arange(n) + rng.uniform(-0.2, 0.2, (2000, n))) / n

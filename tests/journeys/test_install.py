@@ -5,6 +5,9 @@ next to numpy. `import ddg`, the three curvatures and the flow must work there; 
 parts must fail with a message that names the extra to install.
 """
 
+import subprocess
+import sys
+
 from journey_helpers import OFFLINE_PIP, copy_repository, fresh_venv, run
 
 SCRIPT = r"""
@@ -66,3 +69,20 @@ def test_wheel_installs_alone_and_names_the_missing_extras(tmp_path):
     result = run([str(python), "-c", SCRIPT], cwd=tmp_path)  # not the repository: no ddg/ next to it
     assert "geometry ok" in result.stdout
     assert 'ddg.plot: matplotlib is not installed; this part of ddg needs the extra [plot]' in result.stdout
+    names = subprocess.run([sys.executable, "-m", "zipfile", "-l", str(wheels[0])], capture_output=True, text=True,
+                           check=True).stdout
+    assert "ddg/scene.py" in names and "instructor" not in names  # students' package only, no grading code
+
+
+def test_pip_install_of_a_checkout_leaves_nothing_git_would_show(tmp_path):
+    copy = copy_repository(tmp_path / "repo", with_venv=False)
+    run(["git", "init", "-q"], cwd=copy)
+
+    def untracked():
+        return run(["git", "ls-files", "--others", "--exclude-standard"], cwd=copy).stdout.split()
+
+    before = untracked()
+    python = fresh_venv(tmp_path / "venv")
+    run([str(python), "-m", "pip", "install", "--quiet", "."], cwd=copy, env=OFFLINE_PIP)
+    assert (copy / "build").is_dir()  # setuptools' build folder: ignored
+    assert untracked() == before

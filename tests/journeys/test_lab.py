@@ -138,7 +138,9 @@ def test_chapter_renders_like_the_book_and_runs_in_jupyterlab(lab, browser):
         errors = page.locator(".jp-OutputArea-output[data-mime-type='application/vnd.jupyter.stderr']")
         assert errors.count() == 0, errors.all_inner_texts()[:3]
         assert page.locator(".jp-RenderedImage img").count() >= 2  # the chapter's figures
-        assert page.locator(".jp-OutputArea-output", has_text="passed").count() >= 2  # the checks ran
+        checks = page.locator(".jp-OutputArea-output", has_text="passed")
+        assert checks.count() >= 2  # the checks ran, inside the folded solutions: their output folded too
+        assert not any(check.is_visible() for check in checks.all()), "a folded solution shows its output"
         page.screenshot(path=str(ROOT / "_build" / "lab-journey.png"))
     finally:
         context.close()
