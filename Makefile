@@ -144,9 +144,15 @@ screenshots: $(ENV) $(VENDOR) $(KERNEL)
 	DDG_SCREENSHOTS=1 $(PY) -m pytest -q -n 2 tests/browser/test_site.py -k every_view
 	@echo "The screenshots are in $(CURDIR)/_build/screenshots/"
 
+# The speed of ddg and of grading, then what each page of both sites costs a phone on a slow
+# connection (tests/bench_pages.py; both sites are built first where missing).
 bench: $(ENV)
 	$(PY) tests/benchmark.py
 	$(PY) tests/bench_grading.py
+	@[ -f _build/html/index.html ] || $(MAKE) book
+	@[ -f _build/student/html/index.html ] || $(MAKE) student
+	@$(PY) tools/browser.py >/dev/null
+	$(PY) tests/bench_pages.py
 
 # The wheel and the source distribution of ddg (the distribution ddg-plane-curves) in dist/.
 dist: $(ENV)
