@@ -64,5 +64,4 @@ document.addEventListener("DOMContentLoaded", function () {
   document.addEventListener("click", function (event) {  // an opened solution is measured again
     if (event.target.closest(".admonition-title, .toggle-button")) { setTimeout(cue, 0); }
   });
-  if (window.MathJax && MathJax.startup && MathJax.startup.promise) { MathJax.startup.promise.then(cue); }
 });

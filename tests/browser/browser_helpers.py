@@ -93,9 +93,7 @@ class Visit:
         self.page.goto(url, wait_until="load")
         if redirect:  # a redirect page (the site's index.html): the reader lands on its target
             self.page.wait_for_url(urllib.parse.urljoin(url, redirect.group(1)), wait_until="load")
-        if self.page.locator(".math").count():  # a page with math: wait until MathJax has typeset it
-            self.page.wait_for_selector("mjx-container", state="attached", timeout=20000)
-            self.page.evaluate("() => window.MathJax?.startup?.promise?.then(() => true)")  # typesetting done
+        self.page.evaluate("() => document.fonts.ready.then(() => true)")  # the math is in the page; its fonts
         self.show(view)
 
     def show(self, view):

@@ -1,7 +1,8 @@
 """Every page of both sites, as a reader sees it: desktop, phone and dark theme, network cut off.
 
 On each page: nothing requested outside loopback and nothing failing, no unexpected console
-error, every local link resolving, math typeset with no TeX left in the visible text, exactly one
+error, every local link resolving, every formula typeset (when the book was built) in MathJax's
+fonts, with a text for screen readers (its MathML), and no TeX left in the visible text, exactly one
 visible h1, at 1280 px no code or output box scrolling sideways and small figures side by side,
 at 390 px no page scrolling sideways (wide tables and equations scroll inside their own box, with
 a visible cue) and figures not shrunk, on the dark theme figures not dimmed, and no serious or
@@ -73,6 +74,16 @@ TEX_LEFT = r"""() => {
     }
     return found;
 }"""
+
+# Every formula Sphinx wrote is typeset, hidden from screen readers as drawn and read as its
+# MathML (MathJax's assistive MathML); MathJax's fonts for it loaded, none failed.
+UNREADABLE_MATH = r"""() => [...document.querySelectorAll("main .math")].filter(m => {
+    const drawn = m.querySelector("mjx-container > mjx-math[aria-hidden=true]");
+    const text = m.querySelector("mjx-container > mjx-assistive-mml > math");
+    return !drawn || !text || !text.textContent.trim();
+}).map(m => "in: " + m.parentElement.textContent.trim().slice(0, 60))"""
+MATH_FONTS = """() => [...document.fonts].filter(f => f.family.startsWith("MJX")).reduce((count, f) =>
+    (count[f.status] = (count[f.status] || 0) + 1, count), {})"""
 
 SIDEWAYS = r"""(selector) => [...document.querySelectorAll(selector)]
     .filter(e => e.getClientRects().length && e.scrollWidth > e.clientWidth + 1)
@@ -211,6 +222,10 @@ def test_page_reads_right_in_every_view(servers, browser, site, path):
                 problems += [f"requests outside loopback: {visit.outside}"] if visit.outside else []
                 problems += [f"local targets that do not resolve: {m}"] if (m := local_targets_missing(page, site, servers[site])) else []
                 problems += [f"MathJax errors: {n}"] if (n := page.locator("mjx-merror").count()) else []
+                problems += [f"formulas without a text: {u[:3]}"] if (u := page.evaluate(UNREADABLE_MATH)) else []
+                fonts = page.evaluate(MATH_FONTS)
+                if page.locator("main .math").count() and (fonts.get("error") or not fonts.get("loaded")):
+                    problems += [f"MathJax's fonts: {fonts}"]
                 problems += [f"TeX left in the text: {t[:3]}"] if (t := page.evaluate(TEX_LEFT)) else []
                 problems += [f"visible h1: {h}"] if len(h := page.evaluate(VISIBLE_H1)) != 1 else []
                 launch = page.locator(LAUNCH).count()  # Binder and Colab: the book's chapters, never the student site
