@@ -19,6 +19,7 @@ in it.
 import json
 import os
 import pathlib
+import re
 import sys
 
 from docutils import nodes
@@ -65,9 +66,13 @@ process.stdin.on("data", chunk => input += chunk).on("end", () => {
 });
 """
 
+CLOSING = re.compile(r"^[.,;:!?)\]\u2019\u201d]+")  # after a formula: . , ; : ! ? ) ] ’ ”
+OPENING = re.compile(r"[(\[\u2018\u201c]+$")  # before it: ( [ ‘ “
+
 # MathJax in the browser scales math to the x-height of the text around it (127% for DejaVu Sans,
 # about 118% for Roboto and San Francisco); at build time that font is unknown.
 SCALE = 'mjx-container[jax="CHTML"] { font-size: 120%; }\n'
+FONT_CLASS = re.compile(r'class="mjx-c\w+ (TEX-[A-Z0-9]+)"')  # a character of the font MJXTEX-I
 
 
 def display_source(node):
@@ -120,6 +125,7 @@ def typeset_site(app, env):
     if errors:
         raise ExtensionError(f"{len(errors)} formulas could not be typeset (see the warnings above)")
     app.builder.ddg_math = html
+    app.builder.ddg_math_fonts = dict(re.findall(r'font-family: ([\w-]+);\s*src: url\("([^"]+)"\)', css))
     static = pathlib.Path(app.outdir) / "_static"
     static.mkdir(parents=True, exist_ok=True)
     (static / STYLESHEET).write_text(css)
@@ -141,13 +147,45 @@ def visit_displaymath(self, node):
     raise nodes.SkipNode
 
 
+def glue_punctuation(app, doctree, docname):
+    """Punctuation stays on the line of the formula it follows ("... x^2:", not ":" starting a
+    line), and an opening bracket on the line of the formula it opens: both are written with the
+    formula into one <span class="ddg-nowrap"> (done in the reader's browser, it moved the text)."""
+    for math in list(doctree.findall(nodes.math)):
+        parent = math.parent
+        at = parent.index(math)
+        before, after = (parent[i] if 0 <= i < len(parent) else None for i in (at - 1, at + 1))
+        opening = OPENING.search(before) if isinstance(before, nodes.Text) else None
+        closing = CLOSING.match(after) if isinstance(after, nodes.Text) else None
+        if not (opening or closing):
+            continue
+        glue = nodes.inline(classes=["ddg-nowrap"])
+        parent.replace(math, glue)
+        if opening:
+            parent.replace(before, nodes.Text(before[:opening.start()]))
+            glue += nodes.Text(opening.group())
+        glue += math
+        if closing:
+            parent.replace(after, nodes.Text(after[closing.end():]))
+            glue += nodes.Text(closing.group())
+
+
 def link_stylesheet(app, pagename, templatename, context, doctree):
-    if app.env.get_domain("math").has_equations(pagename):
-        app.add_css_file(STYLESHEET)
+    """The math stylesheet; and the fonts of the page's formulas, fetched as the page arrives, after
+    its stylesheets (preloaded, at a low priority, from the body), not when the reader comes to a
+    formula (the browser lays out a section, and asks for its fonts, when it comes into view)."""
+    if not app.env.get_domain("math").has_equations(pagename):
+        return
+    app.add_css_file(STYLESHEET)
+    families = {"MJXZERO", "MJXTEX"} | {"MJX" + c for c in set(FONT_CLASS.findall(context["body"]))}
+    links = [f'<link rel="preload" href="{context["pathto"]("_static/" + app.builder.ddg_math_fonts[family], 1)}" '
+             f'as="font" type="font/woff" crossorigin fetchpriority="low" />' for family in sorted(families)]
+    context["body"] = "\n".join(links) + "\n" + context["body"]
 
 
 def setup(app):
     app.add_html_math_renderer("ddg_math", (visit_math, None), (visit_displaymath, None))
     app.connect("env-updated", typeset_site)
+    app.connect("doctree-resolved", glue_punctuation)
     app.connect("html-page-context", link_stylesheet)
     return {"parallel_read_safe": True, "parallel_write_safe": False}
