@@ -36,16 +36,17 @@ FLAGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "-
 COMPRESSED = (".html", ".css", ".js", ".svg", ".json", ".txt", ".inv", ".map")  # what a static host gzips
 REFRESH = re.compile(r'<meta\s+http-equiv="refresh"', re.I)
 
-# When the page's math is final: typeset (by MathJax in the page, or already in the HTML at
-# DOMContentLoaded) and every MathJax font it asked for arrived. Also the layout shifts.
+# When the page's math is final: painted (first contentful paint), typeset (by MathJax in the
+# page, when its startup promise resolves; or in the HTML, when the HTML is parsed) and every
+# MathJax font it asked for arrived. Also the layout shifts.
 MARKS = """(() => {
     const marks = window.__bench = {cls: 0};
     new PerformanceObserver(list => list.getEntries().forEach(e => { if (!e.hadRecentInput) marks.cls += e.value; }))
         .observe({type: "layout-shift", buffered: true});
     document.addEventListener("DOMContentLoaded", () => {
-        marks.dom = performance.now();
         const typeset = window.MathJax && MathJax.startup && MathJax.startup.promise;
-        (typeset || Promise.resolve()).then(() => { marks.typeset = performance.now(); });
+        const parsed = performance.getEntriesByType("navigation")[0].domInteractive;
+        (typeset || Promise.resolve()).then(() => { marks.typeset = typeset ? performance.now() : parsed; });
     });
 })()"""
 RESULT = """() => document.fonts.ready.then(() => {
@@ -53,7 +54,7 @@ RESULT = """() => document.fonts.ready.then(() => {
     const fonts = performance.getEntriesByType("resource").filter(r => /MathJax_|mathjax.*\\.woff/.test(r.name));
     const math = document.querySelectorAll("mjx-container").length;
     return {fcp: fcp ? fcp.startTime : null, math, cls: marks.cls,
-            final: math ? Math.max(marks.typeset, ...fonts.map(r => r.responseEnd)) : null};
+            final: math ? Math.max(fcp ? fcp.startTime : 0, marks.typeset, ...fonts.map(r => r.responseEnd)) : null};
 })"""
 
 

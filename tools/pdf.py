@@ -34,6 +34,13 @@ FOOTER = ('<div style="font-size: 8px; width: 100%; text-align: center; color: #
           '&middot; page <span class="pageNumber"></span> of <span class="totalPages"></span></div>')
 
 
+# The pages' images load as a reader comes near them (loading="lazy"): in print, every one.
+EVERY_IMAGE = """() => Promise.all([...document.images].map(image => {
+    image.loading = "eager";
+    return image.complete ? null : new Promise(done => { image.onload = image.onerror = done; });
+}))"""
+
+
 def chapters(site):
     """(page, title) of each page of the table of contents, in order (read from the site's _toc.yml)."""
     toc = yaml.safe_load((ROOT / "_toc.yml").read_text())
@@ -65,6 +72,7 @@ def print_page(browser, url, out, title):
     page = context.new_page()
     page.goto(url, wait_until="networkidle")
     page.evaluate("""() => document.querySelectorAll('.toggle-hidden').forEach(e => e.classList.remove('toggle-hidden'))""")
+    page.evaluate(EVERY_IMAGE)
     page.emulate_media(media="print")
     page.evaluate("() => document.fonts.ready.then(() => true)")  # the fonts the printed layout uses
     page.pdf(path=str(out), format="A4", print_background=True, display_header_footer=True,

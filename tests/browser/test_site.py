@@ -11,6 +11,7 @@ their title, which opens them without leaving the page. With DDG_SCREENSHOTS set
 screenshots`), a screenshot of each page in each view is saved.
 """
 
+import gzip
 import pathlib
 import re
 from urllib.parse import unquote, urljoin, urlparse
@@ -138,6 +139,43 @@ LAUNCH = "a[href*='mybinder.org'], a[href*='colab.research']"
 VISIBLE_H1 = "() => [...document.querySelectorAll('h1')].filter(h => h.getClientRects().length).map(h => h.textContent.trim())"
 
 
+# Every script a page loads, and what a page must have for it to load there ("": every page).
+SCRIPTS = {
+    "bootstrap.js": "", "pydata-sphinx-theme.js": "", "sphinx-book-theme.js": "",  # the theme's menus and sidebars
+    "doctools.js": "", "sphinx_highlight.js": "",  # Sphinx: the words searched for, marked on the page a result opens
+    "ddg-book.js": "",  # scroll boxes and their cues
+    "clipboard.min.js": "div.highlight pre", "copybutton.js": "div.highlight pre",  # a copy button on code
+    "togglebutton.js": ".toggle, .admonition.dropdown",  # what folds: solutions
+    "ddg-player.js": ".ddg-explorer", "ddg-states": ".ddg-explorer",  # explorers and animations, and their states
+    "searchtools.js": "#search-results", "language_data.js": "#search-results", "searchindex.js": "#search-results",
+}
+BUDGET = 700_000  # bytes a page may transfer, compressed as a static host compresses text (gzip)
+COMPRESSED = (".html", ".css", ".js", ".svg", ".json", ".txt")
+
+
+def scripts_unused(page, requests):
+    """Scripts the page loaded that it has no use for (SCRIPTS), or that nobody said what they are for."""
+    unused = []
+    for path in dict.fromkeys(urlparse(url).path for url in requests if urlparse(url).path.endswith(".js")):
+        name = next((key for key in SCRIPTS if key == path.split("/")[-1] or f"/{key}/" in path), None)
+        if name is None or (SCRIPTS[name] and not page.locator(SCRIPTS[name]).count()):
+            unused.append(path.split("/")[-1])
+    return unused
+
+
+def transferred(site, server, requests):
+    """The bytes of what the page loaded from the site, text compressed with gzip (level 6) as a
+    static host compresses it: a deterministic count (no headers)."""
+    total = 0
+    for url in dict.fromkeys(requests):
+        if not url.startswith(server):
+            continue
+        local = SITES[site] / unquote(urlparse(url).path).lstrip("/")
+        data = (local / "index.html" if local.is_dir() else local).read_bytes()
+        total += len(gzip.compress(data, 6)) if local.suffix in COMPRESSED or local.is_dir() else len(data)
+    return total
+
+
 def local_targets_missing(page, site, server):
     """Local links, images, scripts and styles of the page that name no file of the site."""
     targets = page.eval_on_selector_all("a[href], img[src], script[src], link[href]",
@@ -228,6 +266,9 @@ def test_page_reads_right_in_every_view(servers, browser, site, path):
                     problems += [f"MathJax's fonts: {fonts}"]
                 problems += [f"TeX left in the text: {t[:3]}"] if (t := page.evaluate(TEX_LEFT)) else []
                 problems += [f"visible h1: {h}"] if len(h := page.evaluate(VISIBLE_H1)) != 1 else []
+                problems += [f"scripts it has no use for: {u}"] if (u := scripts_unused(page, visit.requests)) else []
+                if (size := transferred(site, servers[site], visit.requests)) > BUDGET:
+                    problems += [f"{size / 1000:.0f} kB transferred (gzip), over {BUDGET / 1000:.0f} kB"]
                 launch = page.locator(LAUNCH).count()  # Binder and Colab: the book's chapters, never the student site
                 chapter = site == "book" and re.match(r"book/\d\d_", path)
                 if (launch < 2) if chapter else launch:
