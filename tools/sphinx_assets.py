@@ -9,8 +9,8 @@ The theme and the extensions put each of their files on every page. Here:
   Scripts that wait for the page to be parsed anyway are deferred (DEFER).
 - The theme's icons (about twenty, of Font Awesome) are written into the pages as inline SVG,
   taken from the theme's own copy of Font Awesome. Its script (1.5 MB, which drew them in the
-  reader's browser), its fonts and the icon rules of the theme's stylesheet (a third of it) are
-  no longer loaded, nor served.
+  reader's browser) and the icon rules of the theme's stylesheet (a third of it) go; its fonts,
+  which the stylesheet still uses for the icons of admonitions, are cut down to those (FONT_FILES).
 - The search index and its scripts load only on the search page: the theme's search box, without
   search-as-you-type (the default), only opens that page.
 - Images load when the reader comes near them (loading="lazy"), in a box of their size; so do the
@@ -29,6 +29,7 @@ import re
 import shutil
 
 import pydata_sphinx_theme
+from fontTools import subset
 from sphinx.util import logging
 
 logger = logging.getLogger(__name__)
@@ -42,14 +43,17 @@ THEBE_SETTINGS = "THEBE_JS_URL"  # thebe's inline settings go with its script
 DEFER = {"doctools.js", "sphinx_highlight.js", "clipboard.min.js", "copybutton.js", "sphinx-book-theme.js",
          "togglebutton.js"}
 
-FONT_AWESOME = (pathlib.Path(pydata_sphinx_theme.__file__).parent / "theme" / "pydata_sphinx_theme" / "static"
-                / "scripts" / "fontawesome.js")
+THEME = pathlib.Path(pydata_sphinx_theme.__file__).parent / "theme" / "pydata_sphinx_theme" / "static"
+FONT_AWESOME = THEME / "scripts" / "fontawesome.js"
 # <i class="fa-solid fa-sun fa-lg" data-mode="light"></i>, <span class="fa fa-rocket"></span>
 ICON = re.compile(r'<(i|span) class="([^"]*\bfa[srb]?\b[^"]*|[^"]*\bfa-(?:solid|regular|brands)\b[^"]*)"([^>]*)>\s*</\1>')
 PACKS = {"fa": "fas", "fas": "fas", "fa-solid": "fas", "far": "far", "fa-regular": "far", "fab": "fab",
          "fa-brands": "fab"}
 SIZES = {"fa-lg", "fa-xs", "fa-sm", "fa-1x", "fa-2x", "fa-3x", "fa-fw"}
-ICON_RULES = re.compile(r'(?:\.fa-[a-z0-9-]+:(?:before|after),?)+\{content:"[^"]*"\}|@font-face\{[^}]*Font Awesome[^}]*\}')
+ICON_RULES = re.compile(r'(?:\.fa-[a-z0-9-]+:(?:before|after),?)+\{content:"[^"]*"\}')
+# The stylesheet still draws a few icons with Font Awesome's fonts (admonitions' titles, external
+# links): each font is cut down to those characters, as a 1-2 kB woff in place of 25-160 kB woff2.
+FONT_FILES = re.compile(r'url\(([^)]*/webfonts/)(fa-[a-z]+-\d+)\.woff2\) format\("woff2"\),url\([^)]*\.ttf\) format\("truetype"\)')
 SEARCH_ONLY = re.compile(r'\s*<script src="[^"]*(searchtools\.js|language_data\.js|searchindex\.js)[^"]*"></script>')
 HEAD = [(re.compile(r'\s*<script defer src="[^"]*/fontawesome\.js[^"]*"></script>'), ""),
         (re.compile(r'\s*<link rel="preload" as="script" href="[^"]*"\s*/>'), ""),
@@ -70,8 +74,9 @@ def only_what_the_page_uses(app, pagename, templatename, context, doctree):
     def keep(asset):
         return THEBE_SETTINGS not in asset.attributes.get("body", "") and (name(asset) not in USES or name(asset) in used)
 
-    def deferred(js):
-        return type(js)(js.filename, priority=js.priority, **js.attributes, defer="defer") if name(js) in DEFER else js
+    def deferred(js):  # not on the search page, whose search scripts run at once and need doctools.js
+        later = name(js) in DEFER and pagename != "search"
+        return type(js)(js.filename, priority=js.priority, **js.attributes, defer="defer") if later else js
 
     context["script_files"][:] = [deferred(js) for js in context.get("script_files", []) if keep(js)]
     context["css_files"][:] = [css for css in context.get("css_files", []) if keep(css)]
@@ -156,10 +161,26 @@ def finish_pages(app, exception):
         if new != html:
             path.write_text(new)
     stylesheet = static / "styles" / "pydata-sphinx-theme.css"
-    stylesheet.write_text(ICON_RULES.sub("", stylesheet.read_text()))
+    css = FONT_FILES.sub(r'url(\1\2.woff) format("woff")', ICON_RULES.sub("", stylesheet.read_text()))
+    stylesheet.write_text(css)
+    fonts = static / "vendor" / "fontawesome" / "webfonts"
+    shutil.rmtree(fonts, ignore_errors=True)
+    fonts.mkdir(parents=True)
+    icons_in_css = {ord(c) for c in css if 0xE000 <= ord(c) <= 0xF8FF}  # Font Awesome's code points
+    for font in (THEME / "vendor" / "fontawesome" / "webfonts").glob("*.ttf"):
+        cut_down(font, icons_in_css, fonts / f"{font.stem}.woff")
     for unused in ("scripts/fontawesome.js", "scripts/fontawesome.js.map"):
         (static / unused).unlink(missing_ok=True)
-    shutil.rmtree(static / "vendor" / "fontawesome" / "webfonts", ignore_errors=True)
+
+
+def cut_down(font, characters, out):
+    """The font with only these of its characters, as a woff."""
+    options = subset.Options(flavor="woff")
+    loaded = subset.load_font(str(font), options)
+    subsetter = subset.Subsetter(options)
+    subsetter.populate(unicodes=characters & set(loaded.getBestCmap()))
+    subsetter.subset(loaded)
+    subset.save_font(loaded, str(out), options)
 
 
 def setup(app):

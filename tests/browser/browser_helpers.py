@@ -74,6 +74,9 @@ SCROLL_THROUGH = """async () => {
     }
     scrollTo(0, 0);
 }"""
+# A section out of view is not drawn (ddg-book.css: content-visibility), so what looks at the whole
+# page at once (axe's colour contrast, a full-page screenshot) has every section drawn.
+EVERY_SECTION = "* { content-visibility: visible !important; }"
 LOADED = """() => [...document.images].every(image => image.complete || !image.getClientRects().length)  // shown
     && [...document.querySelectorAll(".ddg-explorer")].every(root => root.player && root.player !== "loading")
     && document.fonts.status === 'loaded'"""
@@ -108,7 +111,8 @@ class Visit:
         if redirect:  # a redirect page (the site's index.html): the reader lands on its target
             self.page.wait_for_url(urllib.parse.urljoin(url, redirect.group(1)), wait_until="load")
         self.page.evaluate(SCROLL_THROUGH)
-        self.page.wait_for_function(LOADED)
+        self.page.wait_for_function(LOADED, timeout=60_000)
+        self.page.add_style_tag(content=EVERY_SECTION)
         self.show(view)
 
     def show(self, view):

@@ -1,8 +1,9 @@
 """Every page of both sites, as a reader sees it: desktop, phone and dark theme, network cut off.
 
-On each page: nothing requested outside loopback and nothing failing, no unexpected console
-error, every local link resolving, every formula typeset (when the book was built) in MathJax's
-fonts, with a text for screen readers (its MathML), and no TeX left in the visible text, exactly one
+On each page, read through: nothing requested outside loopback and nothing failing, no unexpected
+console error, every local link resolving, every script it loads one it uses, at most 700 kB
+transferred (gzip), every icon drawn, every formula typeset (when the book was built) in MathJax's
+fonts, with a text for screen readers (its MathML), no TeX left in the visible text, exactly one
 visible h1, at 1280 px no code or output box scrolling sideways and small figures side by side,
 at 390 px no page scrolling sideways (wide tables and equations scroll inside their own box, with
 a visible cue) and figures not shrunk, on the dark theme figures not dimmed, and no serious or
@@ -83,8 +84,15 @@ UNREADABLE_MATH = r"""() => [...document.querySelectorAll("main .math")].filter(
     const text = m.querySelector("mjx-container > mjx-assistive-mml > math");
     return !drawn || !text || !text.textContent.trim();
 }).map(m => "in: " + m.parentElement.textContent.trim().slice(0, 60))"""
+FONTS_FAILED = "() => [...document.fonts].filter(f => f.status === 'error').map(f => f.family)"
 MATH_FONTS = """() => [...document.fonts].filter(f => f.family.startsWith("MJX")).reduce((count, f) =>
     (count[f.status] = (count[f.status] || 0) + 1, count), {})"""
+
+# The theme's icons are drawn (inline SVG, tools/sphinx_assets.py): none is left to a script.
+ICONS_UNDRAWN = r"""() => [...document.querySelectorAll('.fa:not(svg), [class*="fa-"]:not(svg)'),
+    ...[...document.querySelectorAll("svg.svg-inline--fa")].filter(i => i.getClientRects().length
+                                                                    && !i.getBoundingClientRect().width)]
+    .map(e => e.outerHTML.slice(0, 80))"""
 
 SIDEWAYS = r"""(selector) => [...document.querySelectorAll(selector)]
     .filter(e => e.getClientRects().length && e.scrollWidth > e.clientWidth + 1)
@@ -267,6 +275,8 @@ def test_page_reads_right_in_every_view(servers, browser, site, path):
                 problems += [f"TeX left in the text: {t[:3]}"] if (t := page.evaluate(TEX_LEFT)) else []
                 problems += [f"visible h1: {h}"] if len(h := page.evaluate(VISIBLE_H1)) != 1 else []
                 problems += [f"scripts it has no use for: {u}"] if (u := scripts_unused(page, visit.requests)) else []
+                problems += [f"icons not drawn: {i[:3]}"] if (i := page.evaluate(ICONS_UNDRAWN)) else []
+                problems += [f"fonts that failed: {f}"] if (f := page.evaluate(FONTS_FAILED)) else []
                 if (size := transferred(site, servers[site], visit.requests)) > BUDGET:
                     problems += [f"{size / 1000:.0f} kB transferred (gzip), over {BUDGET / 1000:.0f} kB"]
                 launch = page.locator(LAUNCH).count()  # Binder and Colab: the book's chapters, never the student site
@@ -321,6 +331,26 @@ def test_screenshots_are_saved_whole_when_asked_for(servers, browser, monkeypatc
 
     with Image.open(tmp_path / "student" / "phone" / "book__04_gradient_of_length.jpg") as shot:
         assert (shot.format, shot.size) == ("JPEG", (390, height)), "not the whole page at phone width"
+
+
+@pytest.mark.parametrize("site", list(SITES))
+def test_a_reader_searches_from_a_chapter(servers, browser, site):
+    """The search box of a chapter (which loads no search index) opens the search page, which
+    loads the index and lists the pages that have the words, with the network cut."""
+    visit = Visit(browser, servers[site], "book/04_gradient_of_length.html")
+    page = visit.page
+    try:
+        page.locator(".search-button__button:visible").first.click()
+        page.locator("#pst-search-dialog input[name=q]").fill("turning number")
+        page.keyboard.press("Enter")
+        page.wait_for_url("**/search.html?q=turning*")
+        page.wait_for_function("() => document.querySelectorAll('#search-results li').length >= 3", timeout=20000)
+        found = page.eval_on_selector_all("#search-results li a", "links => links.map(a => a.getAttribute('href'))")
+        assert any("03_winding_number" in href for href in found), found
+        assert not scripts_unused(page, visit.requests[visit.requests.index(page.url):])
+        assert not visit.outside and not visit.failed and not visit.unexpected_console()
+    finally:
+        visit.close()
 
 
 def test_both_sites_were_found():
