@@ -53,6 +53,10 @@ SIZES = {"fa-lg", "fa-xs", "fa-sm", "fa-1x", "fa-2x", "fa-3x", "fa-fw"}
 ICON_RULES = re.compile(r'(?:\.fa-[a-z0-9-]+:(?:before|after),?)+\{content:"[^"]*"\}')
 # The stylesheet still draws a few icons with Font Awesome's fonts (admonitions' titles, external
 # links): each font is cut down to those characters, as a 1-2 kB woff in place of 25-160 kB woff2.
+SELECTORS = re.compile(r",(?![^(]*\))")  # the commas between selectors, not those inside :is(...)
+PSEUDO = re.compile(r":(?:not|is|where|has)\([^)]*\)")  # what these name may be absent from a page
+CLASS = re.compile(r"\.([A-Za-z_][\w-]*)")
+DYNAMIC = {"bs-tooltip-auto", "bs-popover-auto"}  # classes Bootstrap's script builds from pieces
 FONT_FILES = re.compile(r'url\(([^)]*/webfonts/)(fa-[a-z]+-\d+)\.woff2\) format\("woff2"\),url\([^)]*\.ttf\) format\("truetype"\)')
 SEARCH_ONLY = re.compile(r'\s*<script src="[^"]*(searchtools\.js|language_data\.js|searchindex\.js)[^"]*"></script>')
 HEAD = [(re.compile(r'\s*<script defer src="[^"]*/fontawesome\.js[^"]*"></script>'), ""),
@@ -161,7 +165,11 @@ def finish_pages(app, exception):
         if new != html:
             path.write_text(new)
     stylesheet = static / "styles" / "pydata-sphinx-theme.css"
-    css = FONT_FILES.sub(r'url(\1\2.woff) format("woff")', ICON_RULES.sub("", stylesheet.read_text()))
+    used = {c for html in pages.values() for attribute in re.findall(r'class="([^"]*)"', html) for c in attribute.split()}
+    used |= DYNAMIC | {word for script in static.rglob("*.js") if "ddg-states" not in script.parts
+                       for word in re.findall(r"[A-Za-z_][\w-]*", script.read_text())}
+    css = re.sub(r"/\*.*?\*/", "", (THEME / "styles" / "pydata-sphinx-theme.css").read_text(), flags=re.S)
+    css = FONT_FILES.sub(r'url(\1\2.woff) format("woff")', rules_in_use(ICON_RULES.sub("", css), used))
     stylesheet.write_text(css)
     fonts = static / "vendor" / "fontawesome" / "webfonts"
     shutil.rmtree(fonts, ignore_errors=True)
@@ -171,6 +179,28 @@ def finish_pages(app, exception):
         cut_down(font, icons_in_css, fonts / f"{font.stem}.woff")
     for unused in ("scripts/fontawesome.js", "scripts/fontawesome.js.map"):
         (static / unused).unlink(missing_ok=True)
+
+
+def rules_in_use(css, used):
+    """The stylesheet without the rules whose every selector names a class in no page and no script
+    (the theme's stylesheet is all of Bootstrap: cards, carousels, grids the book never uses)."""
+    kept, at = [], 0
+    while (brace := css.find("{", at)) >= 0:
+        depth, end = 1, brace + 1
+        while depth:
+            depth += {"{": 1, "}": -1}.get(css[end], 0)
+            end += 1
+        head, body = css[at:brace].strip(), css[brace + 1:end - 1]
+        if head.startswith(("@media", "@supports", "@container", "@layer")):
+            inner = rules_in_use(body, used)
+            kept += [f"{head}{{{inner}}}"] if inner else []
+        elif head.startswith("@"):
+            kept.append(f"{head}{{{body}}}")
+        else:
+            selectors = [s for s in SELECTORS.split(head) if set(CLASS.findall(PSEUDO.sub("", s))) <= used]
+            kept += [f"{','.join(selectors)}{{{body}}}"] if selectors else []
+        at = end
+    return "".join(kept)
 
 
 def cut_down(font, characters, out):
