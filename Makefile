@@ -17,12 +17,13 @@ export PYTHONPATH := $(CURDIR)
 # What the pages are computed from (Python, ddg/, the pins, the configuration): a change here means
 # every notebook must run again.
 INPUTS = $$({ $(PY) -VV; find ddg -name '*.py' | sort | xargs cat; cat requirements.txt pyproject.toml _config.yml; } | cksum)
-# What every page carries but Sphinx does not watch: the book's stylesheet, scripts and extension.
-ASSETS = $$(find book/_assets tools/sphinx_*.py -type f | sort | xargs cat | cksum)
+# What every page carries but Sphinx does not watch: the book's stylesheet, scripts and extensions,
+# and the pinned MathJax that typesets its formulas (tools/vendor.py).
+ASSETS = $$(find book/_assets tools/sphinx_*.py tools/vendor.py -type f | sort | xargs cat | cksum)
 
 .PHONY: book book-strict test lab bench student pdf dist repo screenshots clean
 
-# The environment, rebuilt when requirements.txt or pyproject.toml change (by content, so a fresh
+# The environment, rebuilt when requirements*.txt or pyproject.toml change (by content, so a fresh
 # clone or a copy with the same pins keeps it). The pins are installed by uv (pinned below; about
 # 15 s here against 95 s with pip), or by pip where uv cannot reach the index (uv does not read
 # pip's configuration). uv compiles the bytecode as pip does (it would not by default): where
@@ -32,10 +33,10 @@ ASSETS = $$(find book/_assets tools/sphinx_*.py -type f | sort | xargs cat | cks
 # install into fresh environments without the network.
 UV := uv==0.13.9
 WHEELS := numpy matplotlib ipywidgets shapely pillow tqdm ipython ipykernel nbclient setuptools wheel
-$(ENV): requirements.txt pyproject.toml
+$(ENV): requirements.txt requirements-build.txt pyproject.toml
 	@$(PYTHON) -c 'import sys; sys.exit(sys.version_info < (3, 11))' || \
 		{ echo "error: $(PYTHON) is older than Python 3.11; run: make PYTHON=python3.11 ..." >&2; exit 1; }
-	@sum="$$(cat requirements.txt pyproject.toml | cksum)"; \
+	@sum="$$(cat requirements.txt requirements-build.txt pyproject.toml | cksum)"; \
 	if [ -f $@ ] && [ "$$(cat $@)" = "$$sum" ]; then touch $@; exit 0; fi; \
 	echo "setting up $(VENV) from requirements.txt ..."; \
 	rm -rf $(VENV) && $(PYTHON) -m venv $(VENV) && \
@@ -43,9 +44,9 @@ $(ENV): requirements.txt pyproject.toml
 	{ $(BIN)/pip download --quiet --disable-pip-version-check -d $(VENV)/wheelhouse \
 		-c $(VENV)/constraints.txt $(WHEELS) > $(VENV)/wheelhouse.log 2>&1 & } && download=$$! && \
 	{ { $(BIN)/pip install --quiet --disable-pip-version-check "$(UV)" && \
-	    $(BIN)/uv pip install --quiet --compile-bytecode --python $(PY) -r requirements.txt; } || \
+	    $(BIN)/uv pip install --quiet --compile-bytecode --python $(PY) -r requirements.txt -r requirements-build.txt; } || \
 	  { echo "uv could not install the pins; installing them with pip ..."; \
-	    $(BIN)/pip install --quiet --disable-pip-version-check -r requirements.txt; }; } && \
+	    $(BIN)/pip install --quiet --disable-pip-version-check -r requirements.txt -r requirements-build.txt; }; } && \
 	{ wait $$download || { cat $(VENV)/wheelhouse.log >&2; exit 1; }; } && \
 	$(PY) -c "import matplotlib.pyplot" && \
 	echo "$$sum" > $@
@@ -56,9 +57,10 @@ KERNEL := $(VENV)/etc/ipython/ipython_kernel_config.py
 $(KERNEL): tools/ipython_kernel_config.py $(ENV)
 	@mkdir -p $(@D) && cp tools/ipython_kernel_config.py $@
 
-# MathJax and the widgets embedder, served by the book itself (offline): tools/vendor.py.
+# MathJax, pinned: for Node, which typesets the formulas when the book is built, and its fonts,
+# which the book serves itself (offline): tools/vendor.py.
 $(VENDOR): $(ENV) tools/vendor.py
-	$(PY) tools/vendor.py $(VENV)/vendor
+	$(PY) tools/vendor.py $(VENV)/vendor $(VENV)/node_modules
 
 # The book. Sphinx re-reads only pages whose source changed and the notebook cache knows only
 # code cells, so when ddg/, the pins or the configuration changed since the last build, the
@@ -144,9 +146,15 @@ screenshots: $(ENV) $(VENDOR) $(KERNEL)
 	DDG_SCREENSHOTS=1 $(PY) -m pytest -q -n 2 tests/browser/test_site.py -k every_view
 	@echo "The screenshots are in $(CURDIR)/_build/screenshots/"
 
+# The speed of ddg and of grading, then what each page of both sites costs a phone on a slow
+# connection (tests/bench_pages.py; both sites are built first where missing).
 bench: $(ENV)
 	$(PY) tests/benchmark.py
 	$(PY) tests/bench_grading.py
+	@[ -f _build/html/index.html ] || $(MAKE) book
+	@[ -f _build/student/html/index.html ] || $(MAKE) student
+	@$(PY) tools/browser.py >/dev/null
+	$(PY) tests/bench_pages.py
 
 # The wheel and the source distribution of ddg (the distribution ddg-plane-curves) in dist/.
 dist: $(ENV)

@@ -27,4 +27,4 @@ def test_readme_opens_with_the_two_commands():
 
 
 def test_readme_tables_render():
-    assert sum(t.type == "table_open" for t in tokens()) == 2
+    assert sum(t.type == "table_open" for t in tokens()) == 3

@@ -2,10 +2,11 @@
 
     python tools/pdf.py SITE OUT        e.g. _build/html _build/pdf
 
-Chromium prints each page of the table of contents, served on loopback, after MathJax has
-typeset it (Playwright's `page.pdf`, with the book's print stylesheet: no sidebars or buttons,
-code that wraps, every explorer and animation as a strip of its states). Solutions print open;
-code that the page folds (the code behind a figure) stays out.
+Chromium prints each page of the table of contents, served on loopback, once its fonts have
+loaded (the math's among them: its formulas were typeset when the book was built), with
+Playwright's `page.pdf` and the book's print stylesheet: no sidebars or buttons, code that wraps,
+every explorer and animation as a strip of its states. Solutions print open; code that the page
+folds (the code behind a figure) stays out.
 Each chapter becomes OUT/<chapter>.pdf, with its title and page numbers at the foot of every
 page; OUT/book.pdf is all of them in order, after a title page whose table of contents links to
 each chapter (and a PDF outline). The PDFs are also copied into SITE/pdf/, and each page of the
@@ -33,6 +34,13 @@ FOOTER = ('<div style="font-size: 8px; width: 100%; text-align: center; color: #
           '&middot; page <span class="pageNumber"></span> of <span class="totalPages"></span></div>')
 
 
+# The pages' images load as a reader comes near them (loading="lazy"): in print, every one.
+EVERY_IMAGE = """() => Promise.all([...document.images].map(image => {
+    image.loading = "eager";
+    return image.complete ? null : new Promise(done => { image.onload = image.onerror = done; });
+}))"""
+
+
 def chapters(site):
     """(page, title) of each page of the table of contents, in order (read from the site's _toc.yml)."""
     toc = yaml.safe_load((ROOT / "_toc.yml").read_text())
@@ -57,17 +65,16 @@ def serve(site):
 
 
 def print_page(browser, url, out, title):
-    """One page as PDF, after MathJax, with solutions open; returns its number of pages."""
+    """One page as PDF, with its fonts loaded and solutions open; returns its number of pages."""
     context = browser.new_context()
     context.route("**/*", lambda r: r.continue_() if r.request.url.startswith(url.split("/book/")[0])
                   or r.request.url.startswith("data:") else r.abort())
     page = context.new_page()
     page.goto(url, wait_until="networkidle")
-    if page.locator(".math").count():
-        page.wait_for_selector("mjx-container", state="attached", timeout=20000)
-        page.evaluate("() => window.MathJax && MathJax.startup ? MathJax.startup.promise : null")
     page.evaluate("""() => document.querySelectorAll('.toggle-hidden').forEach(e => e.classList.remove('toggle-hidden'))""")
+    page.evaluate(EVERY_IMAGE)
     page.emulate_media(media="print")
+    page.evaluate("() => document.fonts.ready.then(() => true)")  # the fonts the printed layout uses
     page.pdf(path=str(out), format="A4", print_background=True, display_header_footer=True,
              header_template="<span></span>", footer_template=FOOTER.format(title=title),
              margin={"top": "16mm", "bottom": "16mm", "left": "14mm", "right": "14mm"})

@@ -1,12 +1,13 @@
-"""Fetch the front-end files the offline book serves itself: `python tools/vendor.py DEST`.
+"""Fetch the front-end files the book is built with: `python tools/vendor.py DEST MODULES`.
 
 A pinned npm package, downloaded from the npm registry (or $NPM_REGISTRY), checked by SHA-256,
-and unpacked with the standard library only, so the set-up works on Linux and macOS: MathJax 3,
-one component (tex-mml-chtml.js) and its woff-v2 fonts. (The explorers need no widget embedder:
-the book's own player draws them, book/_assets/ddg-player.js.)
-
-DEST (the Makefile uses .venv/vendor) is listed in `html_static_path` in _config.yml, so the
-book build copies it into _build/html/_static.
+and unpacked with the standard library only, so the set-up works on Linux and macOS: MathJax 3
+for Node (mathjax-full). Its JavaScript goes into MODULES (the Makefile uses .venv/node_modules),
+where tools/sphinx_math.py runs it to typeset every formula when the book is built; its woff-v2
+fonts go into DEST/mathjax/fonts. DEST (.venv/vendor) is listed in `html_static_path` in
+_config.yml, so the book build copies it into _build/html/_static: the pages load the fonts, and
+no MathJax script. (The explorers need no widget embedder: the book's own player draws them,
+book/_assets/ddg-player.js.)
 """
 
 import fnmatch
@@ -21,11 +22,14 @@ import urllib.request
 
 REGISTRY = os.environ.get("NPM_REGISTRY", "https://registry.npmjs.org").rstrip("/")
 
-# (folder in DEST, tarball path in the registry, sha256, files to keep, their prefix to strip)
+# (tarball path in the registry, sha256, [(files to keep, their prefix to strip, "DEST" or "MODULES",
+# folder there)])
 PACKAGES = [
-    ("mathjax", "mathjax/-/mathjax-3.2.2.tgz",
-     "1b9c0a1c44df864e915690558e72adb9cc5203360daefd385084ced3b6c64c09",
-     ["package/es5/tex-mml-chtml.js", "package/es5/output/chtml/fonts/woff-v2/*"], "package/es5/"),
+    ("mathjax-full/-/mathjax-full-3.2.2.tgz", "d8f080d2e4bdfb75284aac34d5eff155002eca47798b1d4e4bde31453e653f87",
+     [("package/es5/output/chtml/fonts/woff-v2/*.woff", "package/es5/output/chtml/fonts/woff-v2/", "DEST",
+       "mathjax/fonts"),
+      ("package/js/*.js", "package/", "MODULES", "mathjax-full"),
+      ("package/LICENSE", "package/", "MODULES", "mathjax-full")]),
 ]
 
 
@@ -39,8 +43,7 @@ def unpack(data, folder, keep, prefix):
     count = 0
     with tarfile.open(fileobj=io.BytesIO(data), mode="r:gz") as tar:
         for member in tar.getmembers():
-            wanted = any(fnmatch.fnmatch(member.name, pattern) for pattern in keep)
-            if not member.isfile() or not wanted:
+            if not member.isfile() or not fnmatch.fnmatch(member.name, keep):
                 continue
             target = folder / member.name.removeprefix(prefix)
             if ".." in pathlib.PurePosixPath(member.name).parts:
@@ -51,18 +54,21 @@ def unpack(data, folder, keep, prefix):
     return count
 
 
-def main(dest):
-    dest = pathlib.Path(dest)
-    shutil.rmtree(dest, ignore_errors=True)
-    for folder, path, sha256, keep, prefix in PACKAGES:
+def main(dest, modules):
+    roots = {"DEST": pathlib.Path(dest), "MODULES": pathlib.Path(modules)}
+    for root in roots.values():
+        shutil.rmtree(root, ignore_errors=True)
+    for path, sha256, parts in PACKAGES:
         data = download(path)
         digest = hashlib.sha256(data).hexdigest()
         if digest != sha256:
             sys.exit(f"error: {path} has SHA-256 {digest}, expected {sha256}: not using it")
-        count = unpack(data, dest / folder, keep, prefix)
-        print(f"{path}: checked, {count} files in {dest / folder}")
-    (dest / ".installed").touch()
+        for keep, prefix, root, folder in parts:
+            count = unpack(data, roots[root] / folder, keep, prefix)
+            print(f"{path}: checked, {count} files in {roots[root] / folder}")
+    roots["DEST"].mkdir(parents=True, exist_ok=True)
+    (roots["DEST"] / ".installed").touch()
 
 
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else ".venv/vendor")
+    main(*(sys.argv[1:3] if len(sys.argv) > 2 else (".venv/vendor", ".venv/node_modules")))

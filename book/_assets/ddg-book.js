@@ -24,20 +24,6 @@ document.addEventListener("DOMContentLoaded", function () {
       box.appendChild(element);
     }
   });
-  // Punctuation stays on the line of the formula it follows ("... x^2:", not ":" starting a line),
-  // and an opening bracket on the line of the formula it opens.
-  document.querySelectorAll("main span.math").forEach(function (math) {
-    var next = math.nextSibling, before = math.previousSibling;
-    var after = next && next.nodeType === Node.TEXT_NODE ? /^[.,;:!?)\]\u2019\u201d]+/.exec(next.data) : null;
-    var open = before && before.nodeType === Node.TEXT_NODE ? /[(\[\u2018\u201c]+$/.exec(before.data) : null;
-    if (!after && !open) { return; }
-    var glue = document.createElement("span");
-    glue.className = "ddg-nowrap";
-    math.parentNode.insertBefore(glue, math);
-    if (open) { before.data = before.data.slice(0, open.index); glue.appendChild(document.createTextNode(open[0])); }
-    glue.appendChild(math);
-    if (after) { next.data = next.data.slice(after[0].length); glue.appendChild(document.createTextNode(after[0])); }
-  });
   // An inline formula wider than its column (on a phone) gets a line of its own that scrolls.
   function wideInline() {
     var formulas = document.querySelectorAll('main mjx-container:not([display="true"])');
@@ -55,14 +41,13 @@ document.addEventListener("DOMContentLoaded", function () {
   }
   function cue() {
     wideInline();
-    document.querySelectorAll(".ddg-scroll, main div.math mjx-container, main pre").forEach(function (box) {
-      box.classList.toggle("ddg-overflows", box.scrollWidth > box.clientWidth + 1);
-    });
+    var boxes = Array.prototype.slice.call(document.querySelectorAll(".ddg-scroll, main div.math mjx-container, main pre"));
+    var overflows = boxes.map(function (box) { return box.scrollWidth > box.clientWidth + 1; });  // all read, then all set:
+    boxes.forEach(function (box, i) { box.classList.toggle("ddg-overflows", overflows[i]); });  // one layout, not one each
   }
   cue();
   window.addEventListener("resize", cue);
   document.addEventListener("click", function (event) {  // an opened solution is measured again
     if (event.target.closest(".admonition-title, .toggle-button")) { setTimeout(cue, 0); }
   });
-  if (window.MathJax && MathJax.startup && MathJax.startup.promise) { MathJax.startup.promise.then(cue); }
 });

@@ -1,9 +1,10 @@
 /* The book's player for explorers and animations (ddg.explore): no kernel, no network.
  *
- * Each .ddg-explorer element carries, in a JSON script, every state a reader can reach, computed
- * by ddg when the book was built. This script builds standard controls (select, range, button),
- * looks up the state that the controls name, and draws it as SVG. It computes nothing of the
- * lecture: it only looks values up and draws them.
+ * Each .ddg-explorer element carries (or names the script file that carries) every state a reader
+ * can reach, computed by ddg when the book was built; it is loaded when the explorer comes near the
+ * screen. This script builds standard controls (select, range, button), looks up the state that
+ * the controls name, and draws it as SVG. It computes nothing of the lecture: it only looks values
+ * up and draws them.
  */
 (function () {
   "use strict";
@@ -270,25 +271,50 @@
     svg.addEventListener("pointercancel", function () { active = false; });
   };
 
-  function load(root) {  // the states are gzip-compressed JSON, in base64
-    var text = root.querySelector("script.ddg-data").textContent.trim();
-    var bytes = Uint8Array.from(atob(text), function (c) { return c.charCodeAt(0); });
-    var stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream("gzip"));
-    return new Response(stream).json();
-  }
-
-  function start() {
-    if (typeof DecompressionStream === "undefined") { return; }  // an old browser: the first state stays
-    document.querySelectorAll(".ddg-explorer").forEach(function (root) {
-      if (root.player) { return; }
-      root.player = "loading";
-      load(root).then(function (data) { root.player = new Player(root, data); });
+  // The states are gzip-compressed JSON in base64: in the page, or in a script file of their own
+  // (the book moves them there when it is built: tools/sphinx_assets.py), which loads as any script
+  // does, also from a downloaded copy (file://, where fetch cannot read a file).
+  function states(script) {
+    var file = script.getAttribute("data-src");
+    if (!file) { return Promise.resolve(script.textContent); }
+    return new Promise(function (resolve, reject) {
+      var tag = document.createElement("script");
+      tag.src = file;
+      tag.onload = function () { resolve(window.ddgStates[file.split("/").pop()]); };
+      tag.onerror = reject;
+      document.head.appendChild(tag);
     });
   }
 
+  function load(root) {
+    return states(root.querySelector("script.ddg-data")).then(function (text) {
+      var bytes = Uint8Array.from(atob(text.trim()), function (c) { return c.charCodeAt(0); });
+      var stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream("gzip"));
+      return new Response(stream).json();
+    });
+  }
+
+  function start(root) {
+    if (root.player) { return; }
+    root.player = "loading";
+    load(root).then(function (data) { root.player = new Player(root, data); });
+  }
+
+  function watch() {  // an explorer starts (its states load) when it comes within a screen of the reader
+    if (typeof DecompressionStream === "undefined") { return; }  // an old browser: the first state stays
+    var roots = document.querySelectorAll(".ddg-explorer");
+    if (typeof IntersectionObserver === "undefined") { roots.forEach(start); return; }
+    var near = new IntersectionObserver(function (entries) {
+      entries.forEach(function (entry) {
+        if (entry.isIntersecting) { near.unobserve(entry.target); start(entry.target); }
+      });
+    }, {rootMargin: "100% 0px"});
+    roots.forEach(function (root) { near.observe(root); });
+  }
+
   if (document.readyState === "loading") {
-    document.addEventListener("DOMContentLoaded", start);
+    document.addEventListener("DOMContentLoaded", watch);
   } else {
-    start();
+    watch();
   }
 })();

@@ -32,7 +32,6 @@ REFRESH = re.compile(r'<meta\s+http-equiv="refresh"\s+content="\d+;\s*url=([^"]+
 
 # Console errors this stack is known to print, harmless to a reader (GUIDE §5):
 ALLOWED_CONSOLE = [
-    r"Identifier 'THEBE_JS_URL' has already been declared",  # sphinx-thebe declares it twice
     r"Got invalid theme mode",                               # the theme, before it reads the stored mode
 ]
 
@@ -66,8 +65,25 @@ def servers():
         httpd.shutdown()
 
 
+# A reader scrolls through the page, two screens at a time: what loads as it comes near (images,
+# the explorers and their states) loads, and each section is laid out (ddg-book.css).
+SCROLL_THROUGH = """async () => {
+    for (let y = 0; y < document.documentElement.scrollHeight; y += 2 * innerHeight) {
+        scrollTo(0, y);
+        await new Promise(done => requestAnimationFrame(() => setTimeout(done, 30)));
+    }
+    scrollTo(0, 0);
+}"""
+# A section out of view is not drawn (ddg-book.css: content-visibility), so what looks at the whole
+# page at once (axe's colour contrast, a full-page screenshot) has every section drawn.
+EVERY_SECTION = "* { content-visibility: visible !important; }"
+LOADED = """() => [...document.images].every(image => image.complete || !image.getClientRects().length)  // shown
+    && [...document.querySelectorAll(".ddg-explorer")].every(root => root.player && root.player !== "loading")
+    && document.fonts.status === 'loaded'"""
+
+
 class Visit:
-    """One page load, with every request, failure and console message recorded.
+    """One page load, read through, with every request, failure and console message recorded.
 
     The page is loaded once at desktop width in the light theme; `show(view)` then turns the same
     page into another view the way a reader's device would: a narrower window (the page lays
@@ -75,11 +91,12 @@ class Visit:
     """
 
     def __init__(self, browser, base, path, view="desktop"):
-        self.base, self.outside, self.failed, self.console = base, [], [], []
+        self.base, self.outside, self.failed, self.console, self.requests = base, [], [], [], []
         self.ignoring = False  # requests made by axe itself are not the site's
         self.context = browser.new_context(viewport={"width": 1280, "height": 900}, color_scheme="light")
         self.context.route("**/*", self._route)
         self.page = self.context.new_page()
+        self.page.on("request", lambda r: not self.ignoring and self.requests.append(r.url))
         self.page.on("console", lambda m: m.type == "error" and not self.ignoring and self.console.append(m.text))
         self.page.on("pageerror", lambda e: self.console.append(str(e)))
         self.page.on("response", lambda r: r.status >= 400 and not self.ignoring and self.failed.append(f"{r.status} {r.url}"))
@@ -93,9 +110,9 @@ class Visit:
         self.page.goto(url, wait_until="load")
         if redirect:  # a redirect page (the site's index.html): the reader lands on its target
             self.page.wait_for_url(urllib.parse.urljoin(url, redirect.group(1)), wait_until="load")
-        if self.page.locator(".math").count():  # a page with math: wait until MathJax has typeset it
-            self.page.wait_for_selector("mjx-container", state="attached", timeout=20000)
-            self.page.evaluate("() => window.MathJax?.startup?.promise?.then(() => true)")  # typesetting done
+        self.page.evaluate(SCROLL_THROUGH)
+        self.page.wait_for_function(LOADED, timeout=60_000)
+        self.page.add_style_tag(content=EVERY_SECTION)
         self.show(view)
 
     def show(self, view):

@@ -1,7 +1,9 @@
 """Every page of both sites, as a reader sees it: desktop, phone and dark theme, network cut off.
 
-On each page: nothing requested outside loopback and nothing failing, no unexpected console
-error, every local link resolving, math typeset with no TeX left in the visible text, exactly one
+On each page, read through: nothing requested outside loopback and nothing failing, no unexpected
+console error, every local link resolving, every script it loads one it uses, at most 700 kB
+transferred (gzip), every icon drawn, every formula typeset (when the book was built) in MathJax's
+fonts, with a text for screen readers (its MathML), no TeX left in the visible text, exactly one
 visible h1, at 1280 px no code or output box scrolling sideways and small figures side by side,
 at 390 px no page scrolling sideways (wide tables and equations scroll inside their own box, with
 a visible cue) and figures not shrunk, on the dark theme figures not dimmed, and no serious or
@@ -10,6 +12,7 @@ their title, which opens them without leaving the page. With DDG_SCREENSHOTS set
 screenshots`), a screenshot of each page in each view is saved.
 """
 
+import gzip
 import pathlib
 import re
 from urllib.parse import unquote, urljoin, urlparse
@@ -74,6 +77,23 @@ TEX_LEFT = r"""() => {
     return found;
 }"""
 
+# Every formula Sphinx wrote is typeset, hidden from screen readers as drawn and read as its
+# MathML (MathJax's assistive MathML); MathJax's fonts for it loaded, none failed.
+UNREADABLE_MATH = r"""() => [...document.querySelectorAll("main .math")].filter(m => {
+    const drawn = m.querySelector("mjx-container > mjx-math[aria-hidden=true]");
+    const text = m.querySelector("mjx-container > mjx-assistive-mml > math");
+    return !drawn || !text || !text.textContent.trim();
+}).map(m => "in: " + m.parentElement.textContent.trim().slice(0, 60))"""
+FONTS_FAILED = "() => [...document.fonts].filter(f => f.status === 'error').map(f => f.family)"
+MATH_FONTS = """() => [...document.fonts].filter(f => f.family.startsWith("MJX")).reduce((count, f) =>
+    (count[f.status] = (count[f.status] || 0) + 1, count), {})"""
+
+# The theme's icons are drawn (inline SVG, tools/sphinx_assets.py): none is left to a script.
+ICONS_UNDRAWN = r"""() => [...document.querySelectorAll('.fa:not(svg), [class*="fa-"]:not(svg)'),
+    ...[...document.querySelectorAll("svg.svg-inline--fa")].filter(i => i.getClientRects().length
+                                                                    && !i.getBoundingClientRect().width)]
+    .map(e => e.outerHTML.slice(0, 80))"""
+
 SIDEWAYS = r"""(selector) => [...document.querySelectorAll(selector)]
     .filter(e => e.getClientRects().length && e.scrollWidth > e.clientWidth + 1)
     .map(e => (e.className || e.tagName) + ": " + e.textContent.trim().slice(0, 60))"""
@@ -125,6 +145,43 @@ STACKED = r"""() => [...document.querySelectorAll("main .cell_output")]
 LAUNCH = "a[href*='mybinder.org'], a[href*='colab.research']"
 
 VISIBLE_H1 = "() => [...document.querySelectorAll('h1')].filter(h => h.getClientRects().length).map(h => h.textContent.trim())"
+
+
+# Every script a page loads, and what a page must have for it to load there ("": every page).
+SCRIPTS = {
+    "bootstrap.js": "", "pydata-sphinx-theme.js": "", "sphinx-book-theme.js": "",  # the theme's menus and sidebars
+    "doctools.js": "", "sphinx_highlight.js": "",  # Sphinx: the words searched for, marked on the page a result opens
+    "ddg-book.js": "",  # scroll boxes and their cues
+    "clipboard.min.js": "div.highlight pre", "copybutton.js": "div.highlight pre",  # a copy button on code
+    "togglebutton.js": ".toggle, .admonition.dropdown",  # what folds: solutions
+    "ddg-player.js": ".ddg-explorer", "ddg-states": ".ddg-explorer",  # explorers and animations, and their states
+    "searchtools.js": "#search-results", "language_data.js": "#search-results", "searchindex.js": "#search-results",
+}
+BUDGET = 700_000  # bytes a page may transfer, compressed as a static host compresses text (gzip)
+COMPRESSED = (".html", ".css", ".js", ".svg", ".json", ".txt")
+
+
+def scripts_unused(page, requests):
+    """Scripts the page loaded that it has no use for (SCRIPTS), or that nobody said what they are for."""
+    unused = []
+    for path in dict.fromkeys(urlparse(url).path for url in requests if urlparse(url).path.endswith(".js")):
+        name = next((key for key in SCRIPTS if key == path.split("/")[-1] or f"/{key}/" in path), None)
+        if name is None or (SCRIPTS[name] and not page.locator(SCRIPTS[name]).count()):
+            unused.append(path.split("/")[-1])
+    return unused
+
+
+def transferred(site, server, requests):
+    """The bytes of what the page loaded from the site, text compressed with gzip (level 6) as a
+    static host compresses it: a deterministic count (no headers)."""
+    total = 0
+    for url in dict.fromkeys(requests):
+        if not url.startswith(server):
+            continue
+        local = SITES[site] / unquote(urlparse(url).path).lstrip("/")
+        data = (local / "index.html" if local.is_dir() else local).read_bytes()
+        total += len(gzip.compress(data, 6)) if local.suffix in COMPRESSED or local.is_dir() else len(data)
+    return total
 
 
 def local_targets_missing(page, site, server):
@@ -211,8 +268,17 @@ def test_page_reads_right_in_every_view(servers, browser, site, path):
                 problems += [f"requests outside loopback: {visit.outside}"] if visit.outside else []
                 problems += [f"local targets that do not resolve: {m}"] if (m := local_targets_missing(page, site, servers[site])) else []
                 problems += [f"MathJax errors: {n}"] if (n := page.locator("mjx-merror").count()) else []
+                problems += [f"formulas without a text: {u[:3]}"] if (u := page.evaluate(UNREADABLE_MATH)) else []
+                fonts = page.evaluate(MATH_FONTS)
+                if page.locator("main .math").count() and (fonts.get("error") or not fonts.get("loaded")):
+                    problems += [f"MathJax's fonts: {fonts}"]
                 problems += [f"TeX left in the text: {t[:3]}"] if (t := page.evaluate(TEX_LEFT)) else []
                 problems += [f"visible h1: {h}"] if len(h := page.evaluate(VISIBLE_H1)) != 1 else []
+                problems += [f"scripts it has no use for: {u}"] if (u := scripts_unused(page, visit.requests)) else []
+                problems += [f"icons not drawn: {i[:3]}"] if (i := page.evaluate(ICONS_UNDRAWN)) else []
+                problems += [f"fonts that failed: {f}"] if (f := page.evaluate(FONTS_FAILED)) else []
+                if (size := transferred(site, servers[site], visit.requests)) > BUDGET:
+                    problems += [f"{size / 1000:.0f} kB transferred (gzip), over {BUDGET / 1000:.0f} kB"]
                 launch = page.locator(LAUNCH).count()  # Binder and Colab: the book's chapters, never the student site
                 chapter = site == "book" and re.match(r"book/\d\d_", path)
                 if (launch < 2) if chapter else launch:
@@ -265,6 +331,26 @@ def test_screenshots_are_saved_whole_when_asked_for(servers, browser, monkeypatc
 
     with Image.open(tmp_path / "student" / "phone" / "book__04_gradient_of_length.jpg") as shot:
         assert (shot.format, shot.size) == ("JPEG", (390, height)), "not the whole page at phone width"
+
+
+@pytest.mark.parametrize("site", list(SITES))
+def test_a_reader_searches_from_a_chapter(servers, browser, site):
+    """The search box of a chapter (which loads no search index) opens the search page, which
+    loads the index and lists the pages that have the words, with the network cut."""
+    visit = Visit(browser, servers[site], "book/04_gradient_of_length.html")
+    page = visit.page
+    try:
+        page.locator(".search-button__button:visible").first.click()
+        page.locator("#pst-search-dialog input[name=q]").fill("turning number")
+        page.keyboard.press("Enter")
+        page.wait_for_url("**/search.html?q=turning*")
+        page.wait_for_function("() => document.querySelectorAll('#search-results li').length >= 3", timeout=20000)
+        found = page.eval_on_selector_all("#search-results li a", "links => links.map(a => a.getAttribute('href'))")
+        assert any("03_winding_number" in href for href in found), found
+        assert not scripts_unused(page, visit.requests[visit.requests.index(page.url):])
+        assert not visit.outside and not visit.failed and not visit.unexpected_console()
+    finally:
+        visit.close()
 
 
 def test_both_sites_were_found():
