@@ -312,7 +312,7 @@ def inflation_animation(curve, epsilons, start=0, name="the pentagon"):
         scene.alt = (f"{name.capitalize()} inflated by ε = {eps:.2f} in two ways: rectangles on the edges (blue) and, "
                      "at the corners, disk sectors (left, orange) or kites (right, green). " + "; ".join(numbers) + ".")
         frames.append(scene)
-    animation = Animation(frames, "ε", np.round(epsilons, 3), title="Inflation", start=start)
+    animation = Animation(frames, "ε", np.round(epsilons, 3), title="The two inflations", start=start)
     animation.frame_areas = records
     return animation
 
