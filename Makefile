@@ -76,12 +76,12 @@ screenshots: $(ENV) $(VENDOR) $(KERNEL)
 
 # The speed of ddg and of grading, then what each page of both sites costs a phone on 3G.
 bench: $(ENV) $(VENDOR) $(KERNEL)
-	$(PY) tests/benchmark.py
-	$(PY) tests/bench_grading.py
+	$(PY) tests/bench/bench_ddg.py
+	$(PY) tests/bench/bench_grading.py
 	@[ -f _build/html/index.html ] || $(MAKE) book
 	@[ -f _build/student/html/index.html ] || $(MAKE) student
 	@$(PY) tools/browser.py >/dev/null
-	$(PY) tests/bench_pages.py
+	$(PY) tests/bench/bench_pages.py
 
 # The wheel and the source distribution of ddg (the distribution ddg-plane-curves) in dist/.
 dist: $(ENV)

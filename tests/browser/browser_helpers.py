@@ -30,7 +30,7 @@ VIEWS = {"desktop": {"width": 1280, "dark": False}, "phone": {"width": 390, "dar
 # <meta http-equiv="Refresh" content="0; url=book/intro.html" />: what Sphinx writes as index.html
 REFRESH = re.compile(r'<meta\s+http-equiv="refresh"\s+content="\d+;\s*url=([^"]+)"', re.I)
 
-# Console errors this stack is known to print, harmless to a reader (GUIDE §5):
+# Console errors this stack is known to print, harmless to a reader:
 ALLOWED_CONSOLE = [
     r"Got invalid theme mode",                               # the theme, before it reads the stored mode
 ]
@@ -67,19 +67,18 @@ def servers():
 
 # A reader scrolls through the page, two screens at a time: what loads as it comes near (images,
 # the explorers and their states) loads, and each section is laid out (ddg-book.css).
-SCROLL_THROUGH = """async () => {
-    for (let y = 0; y < document.documentElement.scrollHeight; y += 2 * innerHeight) {
-        scrollTo(0, y);
-        await new Promise(done => requestAnimationFrame(() => setTimeout(done, 30)));
-    }
-    scrollTo(0, 0);
-}"""
+def _probes():
+    """The functions the browser tests run in the page, from probes.js (each under a `//# NAME` line)."""
+    text = (pathlib.Path(__file__).parent / "probes.js").read_text()
+    return {name: body.strip() for name, body in re.findall(r"^//# (\w+)\n(.*?)(?=^//# |\Z)", text, re.M | re.S)}
+
+
+PROBES = _probes()
+SCROLL_THROUGH = PROBES["SCROLL_THROUGH"]
 # A section out of view is not drawn (ddg-book.css: content-visibility), so what looks at the whole
 # page at once (axe's colour contrast, a full-page screenshot) has every section drawn.
 EVERY_SECTION = "* { content-visibility: visible !important; }"
-LOADED = """() => [...document.images].every(image => image.complete || !image.getClientRects().length)  // shown
-    && [...document.querySelectorAll(".ddg-explorer")].every(root => root.player && root.player !== "loading")
-    && document.fonts.status === 'loaded'"""
+LOADED = PROBES["LOADED"]
 
 
 class Visit:

@@ -11,26 +11,13 @@ import re
 
 import numpy as np
 import pytest
-from browser_helpers import ROOT, SITES, Visit, pages
+from browser_helpers import PROBES, ROOT, SITES, Visit, pages
 
 from ddg.explore import POLYGONS, InflationExplorer, PolygonExplorer, VertexExplorer, measured_region
 
 EXPLORERS = {"Polygons on a smooth curve": PolygonExplorer(), "Inflation": InflationExplorer(),
              "One vertex": VertexExplorer()}
-SWEEP = """([index, k]) => {  // every step of one slider, timed: the page looks up and draws synchronously
-    const root = document.querySelectorAll(".ddg-explorer")[index];
-    const input = [...root.querySelectorAll(".ddg-controls select, .ddg-controls input")][k];
-    const times = [], start = Number(input.value);
-    for (let value = 0; value <= Number(input.max); value++) {
-        const t0 = performance.now();
-        input.value = value;
-        input.dispatchEvent(new Event("input"));
-        times.push(performance.now() - t0);
-    }
-    input.value = start;
-    input.dispatchEvent(new Event("input"));
-    return times;
-}"""
+SWEEP = PROBES["SWEEP"]
 
 
 def explorer_pages():

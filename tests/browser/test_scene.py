@@ -6,37 +6,12 @@ be the one Python writes (the player adds only focus and hover to labelled dots)
 """
 
 import numpy as np
-from browser_helpers import ROOT
+from browser_helpers import PROBES, ROOT
 
 from ddg.scene import COLORS, Animation, Scene, render
 
 PLAYER = ROOT / "book" / "_assets" / "ddg-player.js"
-COMPARE = """(python) => {
-    const input = document.querySelector(".ddg-controls input");
-    const bare = (svg) => {  // the player's panel without what it adds for interaction
-        const copy = svg.cloneNode(true);
-        copy.querySelectorAll("title").forEach((t) => t.remove());
-        copy.querySelectorAll("circle").forEach((c) => {
-            for (const a of ["tabindex", "role", "aria-label", "data-label", "class"]) c.removeAttribute(a);
-        });
-        return copy.innerHTML;
-    };
-    const parsed = (markup) => {  // Python's markup, serialised by the same browser
-        const svg = document.createElementNS("http://www.w3.org/2000/svg", "svg");
-        svg.innerHTML = markup;
-        return svg.innerHTML;
-    };
-    const differ = [];
-    python.forEach((panels, frame) => {
-        input.value = frame;
-        input.dispatchEvent(new Event("input"));
-        document.querySelectorAll(".ddg-figure svg").forEach((svg, i) => {
-            const js = bare(svg), py = parsed(panels[i]);
-            if (js !== py) differ.push({frame, panel: i, js: js.slice(0, 400), py: py.slice(0, 400)});
-        });
-    });
-    return differ;
-}"""
+COMPARE = PROBES["COMPARE"]
 
 
 def random_scene(rng):

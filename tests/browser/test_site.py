@@ -18,7 +18,7 @@ import re
 from urllib.parse import unquote, urljoin, urlparse
 
 import pytest
-from browser_helpers import SITES, Visit, pages, sync_api
+from browser_helpers import PROBES, SITES, Visit, pages, sync_api
 
 axe_module = pytest.importorskip("axe_playwright_python.sync_playwright")
 
@@ -34,117 +34,43 @@ AXE_SOURCE = axe_module.Axe().axe_script
 # Text whose element and ancestors all have the same tag, classes, colours, opacity and font has
 # the same contrast, so one element of each such kind is marked and axe judges those: about 280 of
 # 1 280 on chapter 7, in a third of the time, and a low-contrast style planted on any kind is found.
-CONTRAST_SAMPLE = r"""() => {
-    document.querySelectorAll("[data-ddg-contrast]").forEach(e => e.removeAttribute("data-ddg-contrast"));
-    const kind = e => { const s = getComputedStyle(e);
-        return [e.tagName, e.className, s.color, s.backgroundColor, s.backgroundImage, s.opacity,
-                s.fontSize, s.fontWeight, s.textShadow, s.filter, s.visibility].join("|"); };
-    // an element's kind together with its ancestors' kinds, as a number: each element's style is
-    // read once, and (its kind, its parent's number) names it
-    const numbers = new Map(), ofElement = new Map();
-    const number = e => {
-        if (!e || e === document.documentElement) return 0;
-        if (!ofElement.has(e)) {
-            const key = kind(e) + ">" + number(e.parentElement);
-            if (!numbers.has(key)) numbers.set(key, numbers.size + 1);
-            ofElement.set(e, numbers.get(key));
-        }
-        return ofElement.get(e);
-    };
-    // what axe judges: drawn text, and it passes over text of punctuation only (so does the sample
-    // where a kind has text with letters or digits too)
-    const own = e => [...e.childNodes].filter(n => n.nodeType === Node.TEXT_NODE).map(n => n.textContent).join("");
-    const texts = [...document.body.querySelectorAll("*")].filter(e => own(e).trim() && e.getClientRects().length);
-    const seen = new Set();
-    for (const pass of [/[\p{L}\p{N}]/u, /./]) {
-        for (const e of texts) {
-            const key = number(e);
-            if (!seen.has(key) && pass.test(own(e))) { seen.add(key); e.setAttribute("data-ddg-contrast", ""); }
-        }
-    }
-    return seen.size;
-}"""
+CONTRAST_SAMPLE = PROBES["CONTRAST_SAMPLE"]
 
-TEX_LEFT = r"""() => {
-    const found = [];
-    const walker = document.createTreeWalker(document.querySelector("main") || document.body, NodeFilter.SHOW_TEXT);
-    while (walker.nextNode()) {
-        const node = walker.currentNode, element = node.parentElement;
-        if (!element || element.closest("mjx-container, code, pre, script, style, svg, .ddg-explorer, .ddg-alt")) continue;
-        if (!element.getClientRects().length) continue;  // not shown (a folded solution)
-        if (/\\[a-zA-Z]{2,}|\$[^$\s][^$]*\$|\\\(|\\\[/.test(node.textContent)) found.push(node.textContent.trim().slice(0, 80));
-    }
-    return found;
-}"""
+TEX_LEFT = PROBES["TEX_LEFT"]
 
 # Every formula Sphinx wrote is typeset, hidden from screen readers as drawn and read as its
 # MathML (MathJax's assistive MathML); MathJax's fonts for it loaded, none failed.
-UNREADABLE_MATH = r"""() => [...document.querySelectorAll("main .math")].filter(m => {
-    const drawn = m.querySelector("mjx-container > mjx-math[aria-hidden=true]");
-    const text = m.querySelector("mjx-container > mjx-assistive-mml > math");
-    return !drawn || !text || !text.textContent.trim();
-}).map(m => "in: " + m.parentElement.textContent.trim().slice(0, 60))"""
-FONTS_FAILED = "() => [...document.fonts].filter(f => f.status === 'error').map(f => f.family)"
-MATH_FONTS = """() => [...document.fonts].filter(f => f.family.startsWith("MJX")).reduce((count, f) =>
-    (count[f.status] = (count[f.status] || 0) + 1, count), {})"""
+UNREADABLE_MATH = PROBES["UNREADABLE_MATH"]
+FONTS_FAILED = PROBES["FONTS_FAILED"]
+MATH_FONTS = PROBES["MATH_FONTS"]
 
 # The theme's icons are drawn (inline SVG, tools/sphinx_assets.py): none is left to a script.
-ICONS_UNDRAWN = r"""() => [...document.querySelectorAll('.fa:not(svg), [class*="fa-"]:not(svg)'),
-    ...[...document.querySelectorAll("svg.svg-inline--fa")].filter(i => i.getClientRects().length
-                                                                    && !i.getBoundingClientRect().width)]
-    .map(e => e.outerHTML.slice(0, 80))"""
+ICONS_UNDRAWN = PROBES["ICONS_UNDRAWN"]
 
-SIDEWAYS = r"""(selector) => [...document.querySelectorAll(selector)]
-    .filter(e => e.getClientRects().length && e.scrollWidth > e.clientWidth + 1)
-    .map(e => (e.className || e.tagName) + ": " + e.textContent.trim().slice(0, 60))"""
+SIDEWAYS = PROBES["SIDEWAYS"]
 
-OPEN_SOLUTIONS = """() => document.querySelectorAll(".solution.toggle-hidden > .admonition-title .toggle-button")
-    .forEach(button => button.click())"""
-SHOWN_SOLUTIONS = """() => [...document.querySelectorAll(".solution")].filter(s =>
-    [...s.querySelectorAll(":scope > :not(.admonition-title)")].some(e => {
-        const box = e.getBoundingClientRect();
-        return box.width > 0 && box.height > 0 && getComputedStyle(e).visibility !== "hidden";
-    })).length"""
-NOTHING_MOVES = "() => document.getAnimations().every(a => a.playState !== 'running')"
-PAGE_IS_WIDER = "() => document.documentElement.scrollWidth - window.innerWidth"
+OPEN_SOLUTIONS = PROBES["OPEN_SOLUTIONS"]
+SHOWN_SOLUTIONS = PROBES["SHOWN_SOLUTIONS"]
+NOTHING_MOVES = PROBES["NOTHING_MOVES"]
+PAGE_IS_WIDER = PROBES["PAGE_IS_WIDER"]
 
 # Whatever scrolls sideways (a table's box, a display equation's container, a code or output box,
 # a wide inline formula) shows the cue at its edge; whatever would cut its content off is a defect.
-UNCUED = r"""() => [...document.querySelectorAll(`main .ddg-scroll, main div.math, main div.math mjx-container,
-        main mjx-container[display=true], main pre`)]
-    .filter(e => e.getClientRects().length && e.scrollWidth > e.clientWidth + 1)
-    .filter(e => { const overflow = getComputedStyle(e).overflowX;
-        return overflow === "hidden" || overflow === "clip"
-            || (overflow !== "visible" && !e.classList.contains("ddg-overflows")); })
-    .map(e => e.tagName + ": " + e.textContent.trim().slice(0, 60))"""
+UNCUED = PROBES["UNCUED"]
 
-FALSE_CUE = r"""() => [...document.querySelectorAll(".ddg-overflows")]
-    .filter(e => e.scrollWidth <= e.clientWidth + 1).map(e => e.tagName + ": " + e.textContent.trim().slice(0, 60))"""
+FALSE_CUE = PROBES["FALSE_CUE"]
 
-CUT_INLINE = r"""() => [...document.querySelectorAll('main mjx-container:not([display="true"])')]
-    .filter(m => m.getClientRects().length).filter(m => {
-        let block = m.parentElement;
-        while (block && getComputedStyle(block).display.startsWith("inline")) block = block.parentElement;
-        const style = getComputedStyle(block);
-        return m.getBoundingClientRect().right > block.getBoundingClientRect().right - parseFloat(style.paddingRight) + 1;
-    }).map(m => (m.getAttribute("aria-label") || m.textContent).slice(0, 60))"""
+CUT_INLINE = PROBES["CUT_INLINE"]
 
-SHRUNK = r"""() => [...document.querySelectorAll("main .cell_output img")]
-    .filter(img => img.naturalWidth > 0 && img.getBoundingClientRect().width < 0.9 * img.naturalWidth)
-    .map(img => img.alt.slice(0, 50) + " at " + Math.round(100 * img.getBoundingClientRect().width / img.naturalWidth) + "%")"""
+SHRUNK = PROBES["SHRUNK"]
 
-DIMMED = r"""() => [...document.querySelectorAll("main .cell_output img, main figure img")]
-    .filter(img => getComputedStyle(img).filter !== "none").map(img => img.alt.slice(0, 50))"""
+DIMMED = PROBES["DIMMED"]
 
-STACKED = r"""() => [...document.querySelectorAll("main .cell_output")]
-    .map(out => [...out.querySelectorAll(":scope > figure.ddg-figure-caption")])
-    .filter(figs => figs.length >= 2 && figs.every(f => f.getBoundingClientRect().width <= 340))
-    .filter(figs => figs[0].getBoundingClientRect().top !== figs[1].getBoundingClientRect().top)
-    .map(figs => figs[0].textContent.trim().slice(0, 50))"""
+STACKED = PROBES["STACKED"]
 
 LAUNCH = "a[href*='mybinder.org'], a[href*='colab.research']"
 
-VISIBLE_H1 = "() => [...document.querySelectorAll('h1')].filter(h => h.getClientRects().length).map(h => h.textContent.trim())"
+VISIBLE_H1 = PROBES["VISIBLE_H1"]
 
 
 # Every script a page loads, and what a page must have for it to load there ("": every page).

@@ -4,7 +4,7 @@ import pathlib
 
 from markdown_it import MarkdownIt
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
 def tokens():

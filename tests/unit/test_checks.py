@@ -19,7 +19,7 @@ import ddg
 from ddg import checks, smooth
 from instructor import edition
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 NOTEBOOKS = sorted((ROOT / "book").glob("*.ipynb"))
 SEEDS = range(100)
 

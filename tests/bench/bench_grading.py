@@ -15,7 +15,7 @@ import time
 
 import nbformat
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 from instructor import edition  # noqa: E402
 

@@ -1,6 +1,6 @@
 """`make bench`: what each page of both sites costs a phone on a slow connection.
 
-    python tests/bench_pages.py [WORD ...]     only the pages whose path contains a WORD
+    python tests/bench/bench_pages.py [WORD ...]     only the pages whose path contains a WORD
 
 Both built sites (_build/html, _build/student/html) are served from 127.0.0.1 compressed with
 gzip, as a static host such as GitHub Pages serves them. Each page is opened with a cold cache in
@@ -23,7 +23,7 @@ import re
 import sys
 import threading
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 from tools.browser import find as find_chromium  # noqa: E402
 

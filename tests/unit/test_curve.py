@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 
 import ddg
 
-# ---------------------------------------------------------------- closed forms (GUIDE §1)
+# ---------------------------------------------------------------- closed forms, in the lecture's conventions (clockwise positive)
 
 
 @pytest.mark.parametrize("n", [3, 4, 7, 100])
