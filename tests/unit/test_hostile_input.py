@@ -259,7 +259,7 @@ def test_thin_ellipses_have_total_curvature_2pi_and_the_exact_length(decades):
     assert e.length == pytest.approx(ellipse_perimeter(a, b), rel=1e-12)
 
 
-def test_the_issues_ellipse():
+def test_an_ellipse_of_axes_100_and_0_01():
     e = smooth.ellipse(100, 0.01)
     assert e.total_curvature() == pytest.approx(2 * np.pi, rel=1e-11)
     assert e.length == pytest.approx(ellipse_perimeter(100, 0.01), rel=1e-13)
