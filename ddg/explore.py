@@ -213,7 +213,7 @@ class VertexExplorer(Explorer):
         x, heights, colors = [], [], []
         for slot, i in enumerate(neighbours):
             scene.text(1, (slot + 0.6) / 3.2 * 240, 270 + 17, f"v{i}", "middle", 13, space="px")
-            for offset, (kind, color) in enumerate(zip(CURVATURES, (COLORS["blue"], COLORS["orange"], COLORS["green"]))):
+            for offset, (kind, color) in enumerate(zip(CURVATURES, (COLORS["blue"], COLORS["orange"], COLORS["green"]), strict=True)):
                 if ks[kind] is not None:
                     x.append(slot + (offset - 1) * 0.25)
                     heights.append(float(np.clip(ks[kind][i], -6, 6)))
@@ -252,7 +252,7 @@ def vertex_explorer(dx=0.0, dy=0.0):
 
 # ------------------------------------------------------------------ the chapters' animations
 
-FLOW_COLORS = dict(zip(CURVATURES, (COLORS["blue"], COLORS["orange"], COLORS["green"])))
+FLOW_COLORS = dict(zip(CURVATURES, (COLORS["blue"], COLORS["orange"], COLORS["green"]), strict=True))
 """The colour of each flow (by its curvature) in the chapters' figures and animations."""
 
 
@@ -341,7 +341,7 @@ def flow_animation(runs, frames=16):
                 scene.line(panel, curve.vertices, FLOW_COLORS[kind], 1.5, True)
             scene.text(panel, 70, -10, f"{name}, t = {t:.2f}", "middle", 13, space="px")
         kinds = list(next(iter(runs.values())))
-        scene.summary = ", ".join(f"{k} flow in {c}" for k, c in zip(kinds, ("blue", "orange", "green"))) + \
+        scene.summary = ", ".join(f"{k} flow in {c}" for k, c in zip(kinds, ("blue", "orange", "green"), strict=False)) + \
             "; the starting curve in grey."
         scene.alt = (f"Frame {frame + 1} of {frames}: " + ", ".join(runs) + " shrinking under the flows, drawn on top "
                      "of each other over their starting curves.")

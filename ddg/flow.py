@@ -430,7 +430,7 @@ class _Run:
         if not self.kept or self.kept[-1][1] is not self.curve:
             self.kept.append((self.t, self.curve))
         f = self.frame
-        t, lengths, areas, numbers = (np.array(column) for column in zip(*self.records))
+        t, lengths, areas, numbers = (np.array(column) for column in zip(*self.records, strict=True))
         return FlowRun(self.settings.kind, self.settings.method, np.ldexp(t, 2 * f.exponent),
                        np.ldexp(lengths, f.exponent), np.ldexp(areas, 2 * f.exponent), numbers.astype(int),
                        [(f.time(t), f.curve(c)) for t, c in self.kept], self.stopped, self.steps, self.seconds)

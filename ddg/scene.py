@@ -74,7 +74,7 @@ def ramp(stops, value):
     i = 0 if value <= 0.5 else 1
     t = value * 2 - i
     a, b = ([int(c[k:k + 2], 16) for k in (1, 3, 5)] for c in stops[i:i + 2])
-    return "#" + "".join(f"{int(np.floor(x + t * (y - x) + 0.5)):02x}" for x, y in zip(a, b))
+    return "#" + "".join(f"{int(np.floor(x + t * (y - x) + 0.5)):02x}" for x, y in zip(a, b, strict=True))
 
 
 def fixed(x):
@@ -206,7 +206,7 @@ def render(panel_index, panel, items, pool=(), stops=RAMP):
                            f'stroke-width="{number(item["width"])}"/><circle cx="{fixed(u)}" cy="{fixed(v)}" r="2.5" '
                            f'fill="{color}"/>')
         elif kind == "bars":
-            for x, height, fill in zip(item["x"], item["heights"], item["colors"]):
+            for x, height, fill in zip(item["x"], item["heights"], item["colors"], strict=True):
                 (left, top) = point(panel, x - item["bar_width"] / 2, max(height, 0))
                 (right, bottom) = point(panel, x + item["bar_width"] / 2, min(height, 0))
                 out.append(f'<rect x="{fixed(left)}" y="{fixed(top)}" width="{fixed(right - left)}" '
@@ -283,7 +283,7 @@ class Explorer:
         """Every state a reader of the static page can reach, by key."""
         names = [c["name"] for c in self.controls]
         grid = itertools.product(*(c["options"] for c in self.controls))
-        return {self.key(dict(zip(names, combo))): self.scene(**dict(zip(names, combo))) for combo in grid}
+        return {self.key(dict(zip(names, combo, strict=True))): self.scene(**dict(zip(names, combo, strict=True))) for combo in grid}
 
     def html(self):
         """The kernel-free explorer: data for the player, and the first state drawn for no-JS and print.

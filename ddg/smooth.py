@@ -65,7 +65,7 @@ def _adaptive(f, t0, t1, cells=1024, max_levels=60, max_cells=10**5):
         done.append((a[ok], b[ok], (left + right)[ok]))
         done_abs += np.sum((left_abs + right_abs)[ok])
         if ok.all():
-            a, b, I = (np.concatenate(parts) for parts in zip(*done))
+            a, b, I = (np.concatenate(parts) for parts in zip(*done, strict=True))
             order = np.argsort(a)
             return a[order], b[order], I[order]
         worst = a[~ok][np.argmax(error[~ok])]

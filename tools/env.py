@@ -59,7 +59,7 @@ def create(venv):
 
 
 def main(venv):
-    if sys.version_info < (3, 11):
+    if sys.version_info < (3, 11):  # noqa: UP036 (this runs on whatever python3 is, before .venv)
         sys.exit(f"error: {sys.executable} is Python {sys.version.split()[0]}, older than 3.11; "
                  "run: make PYTHON=python3.11 ...")
     venv = ROOT / venv

@@ -110,7 +110,7 @@ def check(path, fix=False):
         if cell["cell_type"] == "code" and lines > MAX_SHOWN and not hidden and i not in rest:
             problems.append(f"{path.name} cell {i}: {lines} lines shown on the page (fold it or split it: at most {MAX_SHOWN})")
     prose = len(problems)
-    for i, (cell, fold) in enumerate(zip(data["cells"], folding(data["cells"]))):
+    for i, (cell, fold) in enumerate(zip(data["cells"], folding(data["cells"]), strict=True)):
         if cell["metadata"].get("jupyter", {}) != fold:
             problems.append(f"{path.name} cell {i}: JupyterLab folding should be {fold or 'none'}")
             if fix:

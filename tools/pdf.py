@@ -145,13 +145,13 @@ def main(site, out):
         for path, name in pages:
             counts.append(print_page(browser, base + path, out / f"{pathlib.Path(path).stem}.pdf", name))
         starts = [1 + sum(counts[:i]) for i in range(len(counts))]  # after the contents page
-        contents_page(browser, title, [(name, start + 1) for (_, name), start in zip(pages, starts)],
+        contents_page(browser, title, [(name, start + 1) for (_, name), start in zip(pages, starts, strict=True)],
                       out / "contents.pdf")
         browser.close()
     httpd.shutdown()
     writer = PdfWriter()
     writer.append(out / "contents.pdf")
-    for (path, name), start in zip(pages, starts):
+    for (path, name), start in zip(pages, starts, strict=True):
         writer.append(out / f"{pathlib.Path(path).stem}.pdf")
         writer.add_outline_item(title=name, page_number=start)
     link_contents(writer, starts)

@@ -99,7 +99,7 @@ def icon_paths(icons):
     for pack, name in icons:
         end = source.index(f'd("{pack}",p)')  # each pack is `var p={name:[w,h,[aliases],"f185","path"],...}`
         text = source[source.rindex("var p={", 0, end):end]
-        match = re.search(r'[{,]"?%s"?:\[(\d+),(\d+),\[[^\]]*\],"[^"]*","([^"]+)"\]' % re.escape(name), text)
+        match = re.search(rf'[{{,]"?{re.escape(name)}"?:\[(\d+),(\d+),\[[^\]]*\],"[^"]*","([^"]+)"\]', text)
         if match:
             found[pack, name] = match.groups()
     return found
@@ -155,7 +155,7 @@ def finish_pages(app, exception):
 
     options = f"<script>{(static / 'documentation_options.js').read_text().strip()}</script>"
     for path, html in pages.items():
-        new = IMAGE.sub(lambda match: lazy(match, path.parent), ICON.sub(draw, html))
+        new = IMAGE.sub(lambda match, folder=path.parent: lazy(match, folder), ICON.sub(draw, html))
         new = states_apart(new, path.relative_to(out), static)
         for pattern, replacement in HEAD:
             new = pattern.sub(replacement, new)

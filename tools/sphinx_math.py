@@ -106,7 +106,7 @@ def typeset(formulas, fonts=FONTS):
         raise ExtensionError(f"MathJax failed in Node:\n{result.stderr}")
     out = json.loads(result.stdout)
     errors = {formulas[int(i)]: message for i, message in out["errors"].items()}
-    return dict(zip(formulas, out["html"])), SCALE + out["css"], errors
+    return dict(zip(formulas, out["html"], strict=True)), SCALE + out["css"], errors
 
 
 def typeset_site(app, env):

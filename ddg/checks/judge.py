@@ -162,7 +162,7 @@ def _verdict(exercise, calls, raw):
     got = [np.asarray(r["value"], dtype=float) if _rectangular(r["value"]) else None for r in raw]
     want = [np.asarray(exercise.expected(call), dtype=float) for call in calls]
     right = [g is not None and g.shape == w.shape and np.isfinite(g).all() and exercise.close(g, w, c)
-             for g, w, c in zip(got, want, calls)]
+             for g, w, c in zip(got, want, calls, strict=True)]
     if all(right):
         return None
     first = right.index(False)
@@ -200,7 +200,7 @@ def _shows(mistake, got, want, calls, exercise):
     """Whether the answer shows ``mistake`` on every input (and is right where it cannot show)."""
     if mistake.across is not None:
         return all(g is not None for g in got) and mistake.across(got, want, calls)
-    for g, w, call in zip(got, want, calls):
+    for g, w, call in zip(got, want, calls, strict=True):
         if g is None:
             return False
         if mistake.test is not None:
@@ -214,7 +214,7 @@ def _shows(mistake, got, want, calls, exercise):
         if not exercise.close(np.where(finite, g, 0), np.where(finite, p, 0), call):
             return False
     return any(g is not None and (g.shape != w.shape or not exercise.close(g, w, c))
-               for g, w, c in zip(got, want, calls))
+               for g, w, c in zip(got, want, calls, strict=True))
 
 
 def _place(exercise, got, want, call):

@@ -89,7 +89,7 @@ def answer_all(answer, inputs):
             results.append({"error": str(error)[:300], "kind": type(error).__name__})
             continue
         mutated = any(b is not None and (b.shape != a.shape or not np.array_equal(a, b, equal_nan=True))
-                      for a, b in zip(args, before))
+                      for a, b in zip(args, before, strict=True))
         results.append({**plain(value), "mutated": mutated})
     return results
 

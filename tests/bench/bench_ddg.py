@@ -75,7 +75,7 @@ def flow_steps_per_second():
         _, peak = tracemalloc.get_traced_memory()
         tracemalloc.stop()
         print(f"{f'n = 10^{exponent}':>26} " + " ".join(f"{run.steps / run.seconds:>{width}.1f}" for run, width
-                                                         in zip(rates, (19, 24))) + f" {peak / 1e6:>29.2f}")
+                                                         in zip(rates, (19, 24), strict=True)) + f" {peak / 1e6:>29.2f}")
 
 
 def main():
@@ -85,8 +85,8 @@ def main():
         n = 10**exponent
         vertices = np.array(ddg.regular_polygon(n, 0.7).vertices)
         repeats = max(3, min(200, 10**7 // n))
-        copy = best_time(lambda: np.copy(vertices), repeats)
-        curve = best_time(lambda: build_and_curvatures(vertices), repeats)
+        copy = best_time(lambda v=vertices: np.copy(v), repeats)
+        curve = best_time(lambda v=vertices: build_and_curvatures(v), repeats)
         print(f"{n:>10} {copy * 1e3:>11.3f} {curve * 1e3:>27.3f} {curve / copy:>7.1f}")
 
     c = ddg.regular_polygon(10**6, 0.7)

@@ -91,7 +91,7 @@ def test_a_starter_keeps_every_definition_and_compiles(case):
     for line in kept:
         assert line in code, code
     namespace = {}
-    exec(compile(code, "<starter>", "exec"), namespace)  # noqa: S102: it compiles and runs
+    exec(compile(code, "<starter>", "exec"), namespace)  # noqa: S102 (it compiles and runs)
     reference = {}
     exec(source, reference)  # noqa: S102
     for name, value in reference.items():

@@ -309,9 +309,9 @@ def test_vertices_are_a_read_only_copy():
     c = ddg.DiscreteCurve(v)
     v[0] = 5.0
     assert c.vertices[0, 0] == 0.0
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match="read-only"):
         c.vertices[0, 0] = 1.0
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match="read-only"):
         c.curvature("angle")[0] = 1.0
 
 

@@ -88,7 +88,7 @@ def test_state_names_are_written_as_the_page_writes_them():
     """The page names a state by String() of its control values: 0.0 is "0", 1.0 is "1"."""
     for explorer in (VertexExplorer(0.0, 0.0), InflationExplorer(eps=1.0)):
         data = packed(explorer)
-        for combo in zip(*(c["options"] for c in data["controls"])):
+        for combo in zip(*(c["options"] for c in data["controls"]), strict=False):
             key = "|".join(str(int(v)) if isinstance(v, float) and v.is_integer() else str(v) for v in combo)
             assert key in data["states"], key
     assert packed(VertexExplorer(0.0, 0.0))["value"] == "0|0"
