@@ -32,14 +32,8 @@ grader from a secret seed, only the student's answer runs, in a sandbox, and the
 import numpy as np
 
 from . import comparing, curvatures, curves, geometry
-from .judge import Feedback, judge
+from .judge import EXERCISES, Feedback, judge
 from .runner import TIME_LIMIT, WriteItYourself, evaluate
-
-EXERCISES = {e.name: e for e in (
-    curves.OsculatingCenter(), curves.Staircase(), curves.VertexNormals(), curvatures.TurningAngles(),
-    curvatures.Rebuild(), curvatures.LengthGradient(), curvatures.MinkowskiArea(), comparing.CircleCurvature(),
-    comparing.ZigzagExponent())}
-"""The coding exercises of the book, by the name of the function they ask for."""
 
 CHECKS = {f"check_{name}": name for name in EXERCISES}
 """The check functions of the book, by name, with the exercise each one checks."""
