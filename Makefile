@@ -15,7 +15,7 @@ KERNEL := $(VENV)/etc/ipython/ipython_kernel_config.py
 # The notebooks import the ddg of this checkout, whatever the environment holds.
 export PYTHONPATH := $(CURDIR)
 
-.PHONY: book book-strict test lab bench student pdf dist repo screenshots clean
+.PHONY: book book-strict test pytest lab bench student pdf dist repo screenshots clean
 
 # The environment from requirements.txt and requirements-build.txt (tools/env.py).
 $(ENV): requirements.txt requirements-build.txt pyproject.toml tools/env.py
@@ -48,6 +48,11 @@ test: $(ENV) $(VENDOR) $(KERNEL)
 	$(MAKE) -j2 book-strict student FRESH=1 STUDENT_REPO=
 	$(MAKE) pdf
 	$(PY) -m pytest -n 2 --dist worksteal --durations=12 tests/journeys tests/browser
+
+# One test file, one test or one notebook, as `make test` runs them, for example
+#   make pytest ARGS="tests/unit/test_curve.py -k area"    make pytest ARGS=book/02_discrete_curves.ipynb
+pytest: $(ENV) $(VENDOR) $(KERNEL)
+	$(PY) -m pytest --nbval-lax --nbval-current-env $(ARGS)
 
 # JupyterLab on the chapter notebooks; it prints the URL to open (with its token).
 lab: $(ENV) $(KERNEL)

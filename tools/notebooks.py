@@ -1,5 +1,13 @@
 """Keep the chapter notebooks consistent: `python tools/notebooks.py [--fix] [NOTEBOOK ...]`.
 
+Also `python tools/notebooks.py --add CELLS NOTEBOOK`: append the cells written in CELLS to the
+notebook, then fix its folding. CELLS is plain text in the "percent" format: a line
+``# %% [markdown]`` starts a markdown cell (the lines after it are its Markdown, as written), a
+line ``# %%`` starts a code cell, and ``# %% tags=["solution"]`` gives the cell its tags
+(CONTRIBUTING.md uses it to add an exercise). A coding exercise among the cells (an
+``{exercise}`` with a label, and a cell tagged ``check`` calling ``check_NAME(...)``) is entered
+in the notebook's metadata ``ddg.exercises``, worth 1 point, which is what the grader reads.
+
 Two checks. First, prose that cannot break: in a markdown cell, a line that a Markdown parser
 reads as a heading, a list item, a quote or a rule right after a line of running text is
 almost always a wrapped sentence (`+ `, `# ` or `1. ` at the start of a line) that became markup,
@@ -122,7 +130,50 @@ def check(path, fix=False):
     return problems
 
 
+CELL = re.compile(r"^# %%(?: \[(markdown)\])?(?: tags=(\[[^\]]*\]))?\s*$")
+
+
+def add(cells_path, path):
+    """Append the cells of the percent-format file ``cells_path`` to the notebook at ``path``."""
+    data = json.loads(path.read_text())
+    cells, ids = [], {cell.get("id") for cell in data["cells"]}
+    for line in cells_path.read_text().splitlines(keepends=True):
+        header = CELL.match(line.rstrip("\n"))
+        if header:
+            kind, tags = header.groups()
+            cells.append({"cell_type": "markdown" if kind else "code", "metadata": {}, "source": []})
+            if tags:
+                cells[-1]["metadata"]["tags"] = json.loads(tags)
+            if not kind:
+                cells[-1].update(execution_count=None, outputs=[])
+        elif cells:
+            cells[-1]["source"].append(line)
+        elif line.strip():
+            raise SystemExit(f"{cells_path}: text before the first '# %%' line: {line.strip()[:60]!r}")
+    for cell in cells:
+        while cell["source"] and not cell["source"][-1].strip():
+            cell["source"].pop()
+        if cell["source"]:
+            cell["source"][-1] = cell["source"][-1].rstrip("\n")
+        cell["id"] = next(f"c{i:03d}" for i in range(len(ids) + len(cells) + 1) if f"c{i:03d}" not in ids)
+        ids.add(cell["id"])
+    data["cells"] += cells
+    labels = [m for c in cells if c["cell_type"] == "markdown"
+              for m in re.findall(r"```\{exercise\}[^`]*?:label: (\S+)", "".join(c["source"]))]
+    checked = [m for c in cells if "check" in c["metadata"].get("tags", [])
+               for m in re.findall(r"\bcheck_(\w+)\(", "".join(c["source"]))]
+    if labels and checked:  # a coding exercise: the grader reads its answer, check and points here
+        graded = data["metadata"].setdefault("ddg", {}).setdefault("exercises", {})
+        graded[labels[0]] = {"answer": checked[0], "check": f"check_{checked[0]}", "points": 1}
+    path.write_text(json.dumps(data, indent=1, ensure_ascii=False, sort_keys=True) + "\n")
+    check(path, fix=True)
+    print(f"{path.name}: {len(cells)} cells added")
+
+
 def main(argv):
+    if argv[:1] == ["--add"] and len(argv) == 3:
+        add(pathlib.Path(argv[1]), pathlib.Path(argv[2]))
+        return 0
     fix = "--fix" in argv
     paths = [pathlib.Path(a) for a in argv if not a.startswith("--")] or sorted((ROOT / "book").glob("*.ipynb"))
     problems = [p for path in paths for p in check(path, fix)]

@@ -31,7 +31,7 @@ grader from a secret seed, only the student's answer runs, in a sandbox, and the
 
 import numpy as np
 
-from . import comparing, curvatures, curves, geometry
+from . import comparing, curvatures, curves, geometry  # noqa: F401 (importing them registers their exercises)
 from .judge import EXERCISES, Feedback, judge
 from .runner import TIME_LIMIT, WriteItYourself, evaluate
 

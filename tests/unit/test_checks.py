@@ -34,6 +34,12 @@ def test_every_coding_exercise_has_a_check_and_six_catalogued_mistakes():
             if "check" in cell["metadata"].get("tags", []):
                 called |= set(re.findall(r"\b(check_\w+)\(", "".join(cell["source"])))
     guide = "see CONTRIBUTING.md, 'Adding an exercise with a check'"
+    for nb in NOTEBOOKS:  # the grader grades what the notebook's metadata lists
+        data = json.loads(nb.read_text())
+        in_cells = {c for cell in data["cells"] if "check" in cell["metadata"].get("tags", [])
+                    for c in re.findall(r"\b(check_\w+)\(", "".join(cell["source"]))}
+        graded = {e["check"] for e in data["metadata"].get("ddg", {}).get("exercises", {}).values()}
+        assert in_cells == graded, f"{nb.name}: checks {in_cells} but metadata ddg.exercises {graded} ({guide})"
     exercises = set(checks.EXERCISES)
     for what, names in (("no check_... function in ddg/checks/__init__.py", exercises - set(checks.CHECKS.values())),
                         ("no cell tagged `check` calling its check in a chapter", exercises - {
