@@ -16,7 +16,8 @@
     are kept while :func:`inputs` is unchanged, so only notebooks whose code changed run again;
     ``--fresh`` runs them all.
 ``pdf``
-    Both editions printed by Chromium (``tools/pdf.py``), side by side: ``_build/pdf``.
+    Both editions printed by Chromium (``tools/pdf.py``), side by side: ``_build/pdf``; the book is
+    built first where missing, the student edition again where it is older than the book.
 
 Each step says in one line what it does again and why.
 """
@@ -120,9 +121,22 @@ def student(fresh=False, force=False, student_repo=None):
     print(f"The student site is at {out / 'html' / 'index.html'}")
 
 
+def student_is_current():
+    """Whether the student site was built from the book as it is: the same inputs, and no chapter,
+    page or configuration changed since."""
+    site = BUILD / "student" / "html" / "index.html"
+    if not site.exists() or stamped(BUILD / "student" / "_build", "inputs") != inputs():
+        return False
+    sources = [*(ROOT / "book").iterdir(), ROOT / "_toc.yml", ROOT / "_config.yml"]
+    return all(path.stat().st_mtime <= site.stat().st_mtime for path in sources if path.is_file())
+
+
 def pdf():
     if not (BUILD / "html" / "index.html").exists():
         book()
+    if (BUILD / "student" / "html").exists() and not student_is_current():
+        print("the student edition is older than the book: it is built again first", flush=True)
+        student()
     jobs = [[sys.executable, "tools/pdf.py", "_build/html", "_build/pdf"]]
     if (BUILD / "student" / "html" / "index.html").exists():
         jobs.append([sys.executable, "tools/pdf.py", "_build/student/html", "_build/pdf/student"])

@@ -7,14 +7,15 @@ loaded (the math's among them: its formulas were typeset when the book was built
 Playwright's `page.pdf` and the book's print stylesheet: no sidebars or buttons, code that wraps,
 every explorer and animation as a strip of its states. Solutions print open; code that the page
 folds (the code behind a figure) stays out.
-Each chapter becomes OUT/<chapter>.pdf, with its title and page numbers at the foot of every
+Each chapter becomes OUT/<chapter>.pdf, with its title and its page numbers at the foot of every
 page; OUT/book.pdf is all of them in order, after a title page whose table of contents links to
-each chapter (and a PDF outline). The PDFs are also copied into SITE/pdf/, and each page of the
+each chapter (and a PDF outline), and there the feet count the book's pages, as the contents do. The PDFs are also copied into SITE/pdf/, and each page of the
 site offers its chapter's PDF and the book's next to its .ipynb download.
 """
 
 import functools
 import http.server
+import io
 import pathlib
 import re
 import sys
@@ -30,8 +31,9 @@ from tools.browser import find as find_chromium  # noqa: E402
 
 FLAGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking",
          "--disable-component-update", "--disable-sync"]
-FOOTER = ('<div style="font-size: 8px; width: 100%; text-align: center; color: #555;">{title} '
-          '&middot; page <span class="pageNumber"></span> of <span class="totalPages"></span></div>')
+MARGIN = {"top": "16mm", "bottom": "16mm", "left": "14mm", "right": "14mm"}
+FOOT = ('<div style="height: 296mm; position: relative; break-after: page; font: 8px sans-serif; color: #555">'
+        '<div style="position: absolute; bottom: 7mm; width: 100%; text-align: center">{}</div></div>')
 
 
 # The pages' images load as a reader comes near them (loading="lazy"): in print, every one.
@@ -75,11 +77,29 @@ def print_page(browser, url, out, title):
     page.evaluate(EVERY_IMAGE)
     page.emulate_media(media="print")
     page.evaluate("() => document.fonts.ready.then(() => true)")  # the fonts the printed layout uses
-    page.pdf(path=str(out), format="A4", print_background=True, display_header_footer=True,
-             header_template="<span></span>", footer_template=FOOTER.format(title=title),
-             margin={"top": "16mm", "bottom": "16mm", "left": "14mm", "right": "14mm"})
+    page.pdf(path=str(out), format="A4", print_background=True, margin=MARGIN)
     context.close()
     return len(PdfReader(out).pages)
+
+
+def feet(browser, texts, out):
+    """A PDF of blank A4 pages, each with its text at the foot: laid over the printed pages."""
+    context = browser.new_context()
+    page = context.new_page()
+    page.set_content("<html><head><meta charset='utf-8'><style>body { margin: 0 }</style></head><body>"
+                     + "".join(FOOT.format(text) for text in texts) + "</body></html>")
+    page.pdf(path=str(out), format="A4", margin={"top": "0", "bottom": "0", "left": "0", "right": "0"})
+    context.close()
+    return PdfReader(out).pages
+
+
+def numbered(pdf, overlays, out):
+    """``pdf`` with each page's foot laid over it, written to ``out``."""
+    writer = PdfWriter(clone_from=PdfReader(io.BytesIO(pathlib.Path(pdf).read_bytes())))
+    for page, foot in zip(writer.pages, overlays, strict=True):
+        page.merge_page(foot)
+    with open(out, "wb") as file:
+        writer.write(file)
 
 
 def contents_page(browser, title, entries, out):
@@ -147,6 +167,12 @@ def main(site, out):
         starts = [1 + sum(counts[:i]) for i in range(len(counts))]  # after the contents page
         contents_page(browser, title, [(name, start + 1) for (_, name), start in zip(pages, starts, strict=True)],
                       out / "contents.pdf")
+        total = 1 + sum(counts)
+        book_feet = feet(browser, [""] + [f"{name} &middot; page {start + k} of {total}" for (_, name), start, count
+                                          in zip(pages, starts, counts, strict=True) for k in range(1, count + 1)],
+                         out / "feet.pdf")
+        chapter_feet = [feet(browser, [f"{name} &middot; page {k} of {count}" for k in range(1, count + 1)],
+                             out / f"feet-{i}.pdf") for i, ((_, name), count) in enumerate(zip(pages, counts, strict=True))]
         browser.close()
     httpd.shutdown()
     writer = PdfWriter()
@@ -154,11 +180,17 @@ def main(site, out):
     for (path, name), start in zip(pages, starts, strict=True):
         writer.append(out / f"{pathlib.Path(path).stem}.pdf")
         writer.add_outline_item(title=name, page_number=start)
+    for page, foot in zip(writer.pages, book_feet, strict=True):
+        page.merge_page(foot)
+    for (path, _), overlays in zip(pages, chapter_feet, strict=True):  # after the book took them unnumbered
+        chapter = out / f"{pathlib.Path(path).stem}.pdf"
+        numbered(chapter, overlays, chapter)
     link_contents(writer, starts)
     writer.add_metadata({"/Title": title})
     with open(out / "book.pdf", "wb") as file:
         writer.write(file)
-    (out / "contents.pdf").unlink()
+    for scratch in (out / "contents.pdf", *out.glob("feet*.pdf")):
+        scratch.unlink()
     copy = site / "pdf"
     copy.mkdir(exist_ok=True)
     for pdf in out.glob("*.pdf"):

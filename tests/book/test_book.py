@@ -145,3 +145,28 @@ def test_the_notebook_check_finds_long_code_a_reader_sees(tmp_path):
     assert problems(cell(30)) == []
     assert problems(cell(31)) == ["nb.ipynb cell 0: 31 lines shown on the page (fold it or split it: at most 30)"]
     assert problems(cell(90, ["hide-input"]), cell(90, ["remove-cell"])) == []
+
+
+def test_the_pdf_step_knows_a_stale_student_edition(tmp_path, monkeypatch):
+    """`make pdf` builds the student edition again when the book changed after it was built."""
+    import os
+
+    from tools import build
+
+    root = tmp_path / "repo"
+    for name in ("book", "ddg", "_build/student/html", "_build/student/_build"):
+        (root / name).mkdir(parents=True)
+    for name in ("requirements.txt", "pyproject.toml", "_config.yml", "_toc.yml", "book/01.ipynb", "ddg/x.py"):
+        (root / name).write_text("x")
+    monkeypatch.setattr(build, "ROOT", root)
+    monkeypatch.setattr(build, "BUILD", root / "_build")
+    site = root / "_build/student/html/index.html"
+    site.write_text("<html>")
+    build.stamp(root / "_build/student/_build", inputs=build.inputs())
+    assert build.student_is_current()
+    chapter = root / "book/01.ipynb"
+    os.utime(chapter, (site.stat().st_mtime + 5,) * 2)  # the instructor edits a chapter afterwards
+    assert not build.student_is_current()
+    os.utime(chapter, (site.stat().st_mtime - 5,) * 2)
+    (root / "ddg/x.py").write_text("y")  # ddg changed: every output may differ
+    assert not build.student_is_current()

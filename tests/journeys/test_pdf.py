@@ -86,7 +86,32 @@ def test_the_book_pdf_has_every_chapter_in_order_and_a_linked_contents_page(site
     links = [a.get_object() for a in book.pages[0].get("/Annots", [])]
     targets = [book.get_page_number(a["/A"]["/D"][0]) if hasattr(book, "get_page_number") else None for a in links]
     assert targets == starts, "the contents page does not link to each chapter's first page"
-    assert "page 1 of" in read(pdf_dir / "book.pdf")[0][1]  # page numbers in the footer
+    texts = read(pdf_dir / "book.pdf")[0]
+    total = len(book.pages)
+    for name, start, count in zip(chapters(), starts, counts, strict=True):  # the feet count the book's pages
+        assert f"page {start + 1} of {total}" in texts[start], (name, texts[start][-120:])
+        assert f"page {start + count} of {total}" in texts[start + count - 1], name
+        first = read(pdf_dir / f"{name.split('/')[-1]}.pdf")[0][0]
+        assert f"page 1 of {count}" in first, (name, first[-120:])  # a chapter's own PDF counts its own
+    contents = texts[0]
+    for name, start in zip(chapters(), starts, strict=True):  # as the contents page says
+        assert re.search(rf"{start + 1}\s", contents), (name, start + 1)
+
+
+@pytest.mark.parametrize("site", list(SITES))
+def test_no_printed_page_is_nearly_empty(site):
+    """A page with little text holds figures or an explorer's printed states, never nothing."""
+    document = pypdfium2.PdfDocument(SITES[site][1] / "book.pdf")
+    empty = []
+    for i in range(len(document)):
+        page = document[i]
+        text = page.get_textpage().get_text_bounded()
+        drawn = len(list(page.get_objects(filter=[pypdfium2.raw.FPDF_PAGEOBJ_IMAGE, pypdfium2.raw.FPDF_PAGEOBJ_PATH],
+                                          max_depth=5)))
+        if len(text) < 300 and not drawn:
+            empty.append((i + 1, text.strip()[:60]))
+    document.close()
+    assert not empty, f"nearly empty pages: {empty}"
 
 
 def test_the_student_pdf_has_no_solution():
