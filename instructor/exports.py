@@ -12,6 +12,7 @@ the student reads; the executed notebook lies beside it.
 import csv
 import datetime
 import hashlib
+import json
 import math
 import pathlib
 import re
@@ -194,6 +195,34 @@ def write_feedback(records, rows, table, roster, out):
         path.write_text("\n".join(lines) + "\n", encoding="utf-8")
         paths.append(path)
     return paths
+
+
+def executed_notebook(nb, entries):
+    """The submission with the outputs of the cells that ran, and a last cell that says which ran."""
+    nb = json.loads(json.dumps(nb))
+    ran = {}
+    for label, entry in entries.items():
+        for i, cell in entry.get("cells", {}).items():
+            ran.setdefault(int(i), (label, cell))
+    for i, cell in enumerate(nb["cells"]):
+        if cell.get("cell_type") != "code":
+            continue
+        cell["outputs"], cell["execution_count"] = [], None
+        if i in ran:
+            label, result = ran[i]
+            for stream in ("stdout", "stderr"):
+                if result.get(stream):
+                    cell["outputs"].append({"output_type": "stream", "name": stream, "text": result[stream]})
+            if result.get("error"):
+                error = result["error"]
+                cell["outputs"].append({"output_type": "error", "ename": error["ename"], "evalue": error["evalue"],
+                                        "traceback": error.get("traceback", [])})
+            cell.setdefault("metadata", {})["ddg_grading"] = {"ran_for": label, "seconds": result.get("seconds")}
+    which = ", ".join(str(i + 1) for i in sorted(ran)) or "none"
+    nb["cells"].append({"cell_type": "markdown", "id": "ddg-grading", "metadata": {},
+                        "source": f"**Run by the grader**: cells {which} (the cells the graded answers need, "
+                                  "with their outputs then); the others did not run."})
+    return nb
 
 
 def write_all(records, table, roster, out, problems, policy, manual_path=None):

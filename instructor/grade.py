@@ -23,6 +23,7 @@ Gradescope autograder instead (``instructor/gradescope.py``).
 import argparse
 import collections
 import concurrent.futures
+import functools
 import hashlib
 import json
 import os
@@ -82,6 +83,7 @@ def draw_inputs(table, secret):
     return inputs
 
 
+@functools.cache
 def version():
     """What a cached result depends on besides the submission and its input: ddg and the harness."""
     digest = hashlib.sha256()
@@ -141,10 +143,11 @@ class Cache:
 
 
 def run_notebook(data, coding, inputs, limits, cache=None, force=(), cached_only=False):
-    """``(notebook, cells, {label: entry})``: what the harness found for each exercise (or the cache)."""
+    """``(notebook, cells, {label: entry}, problem)``: what the harness found for each exercise (or the
+    cache), or why the file is not a notebook."""
     parsed, problem = parse_notebook(data)
     if problem:
-        return None, None, {label: {"notebook": problem} for label in coding}
+        return None, None, {label: {"notebook": problem} for label in coding}, problem
     nb, cells = parsed
     sha = hashlib.sha256(data).hexdigest()
     keys = {label: hashlib.sha256(json.dumps([sha, label, e, inputs[label], limits, version()],
@@ -173,7 +176,7 @@ def run_notebook(data, coding, inputs, limits, cache=None, force=(), cached_only
             entries[label] = entry
             if cache is not None:
                 cache.store(sha, label, keys[label], entry)
-    return nb, cells, entries
+    return nb, cells, entries, None
 
 
 # ------------------------------------------------------------------ what happened, in words
@@ -275,48 +278,21 @@ def assess(label, meta, entry, calls, cells, limits):
 # ------------------------------------------------------------------ a class
 
 
-def executed_notebook(nb, entries):
-    """The submission with the outputs of the cells that ran, and a first cell that says which ran."""
-    nb = json.loads(json.dumps(nb))
-    ran = {}
-    for label, entry in entries.items():
-        for i, cell in entry.get("cells", {}).items():
-            ran.setdefault(int(i), (label, cell))
-    for i, cell in enumerate(nb["cells"]):
-        if cell.get("cell_type") != "code":
-            continue
-        cell["outputs"], cell["execution_count"] = [], None
-        if i in ran:
-            label, result = ran[i]
-            for stream in ("stdout", "stderr"):
-                if result.get(stream):
-                    cell["outputs"].append({"output_type": "stream", "name": stream, "text": result[stream]})
-            if result.get("error"):
-                error = result["error"]
-                cell["outputs"].append({"output_type": "error", "ename": error["ename"], "evalue": error["evalue"],
-                                        "traceback": error.get("traceback", [])})
-            cell.setdefault("metadata", {})["ddg_grading"] = {"ran_for": label, "seconds": result.get("seconds")}
-    which = ", ".join(str(i + 1) for i in sorted(ran)) or "none"
-    nb["cells"].append({"cell_type": "markdown", "id": "ddg-grading", "metadata": {}, "source": f"**Run by the grader**: cells {which} "
-                        "(the cells the graded answers need, with their outputs then); the others did not run."})
-    return nb
-
-
 def grade_one(submission, table, inputs, limits, out, forced, cached_only):
     """The record of one submission (the fields ``exports`` reads); its executed notebook is written to ``out``."""
     coding = table[submission.chapter]["coding"]
     try:
         data = submission.path.read_bytes()
     except OSError as error:
-        data = str(error).encode()
-    nb, cells, entries = run_notebook(data, coding, {label: inputs[label] for label in coding}, limits,
-                                      Cache(out / "cache"), forced(submission, coding), cached_only)
+        data = f"not read: {error}".encode()
+    nb, cells, entries, problem = run_notebook(data, coding, {label: inputs[label] for label in coding}, limits,
+                                               Cache(out / "cache"), forced(submission, coding), cached_only)
     record = {"student": submission.student, "chapter": submission.chapter, "path": str(submission.path),
               "points": {}, "max": {}, "problem": {}, "right": {}, "lines": [],
               "ungraded": any(e.get("ungraded") for e in entries.values()),
               "cached": bool(entries) and all(e.get("cached") for e in entries.values())}
-    if nb is None:
-        record["lines"].append(f"✗ {next(iter(entries.values()))['notebook']}")
+    if problem:
+        record["lines"].append(f"✗ {problem}")
     for label, meta in coding.items():
         calls = [Call(tuple(c["args"]), c["what"]) for c in inputs[label]]
         result = assess(label, meta, entries[label], calls, cells, limits)
@@ -326,7 +302,7 @@ def grade_one(submission, table, inputs, limits, out, forced, cached_only):
     if nb is not None and not record["ungraded"]:
         path = exports.feedback_path(out, submission.student, submission.chapter).with_suffix(".ipynb")
         path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(json.dumps(executed_notebook(nb, entries), indent=1))
+        path.write_text(json.dumps(exports.executed_notebook(nb, entries), indent=1))
     return record
 
 
@@ -431,7 +407,7 @@ def main(argv=None):
         print("note: no sandbox here (it needs Linux, root and util-linux's unshare, mount, chroot and setpriv): "
               "each submission runs as you and can read what you can (see the README)", file=sys.stderr)
     start = time.monotonic()
-    inputs = draw_inputs(table, secret)
+    inputs = draw_inputs({c: table[c] for c in {s.chapter for s in graded_here}}, secret)
     records = grade(graded_here, table, inputs, limits, out, args.jobs, set(args.only), set(args.student), args.merge)
     seconds = time.monotonic() - start
     ungraded = [r for r in records if r["ungraded"]]

@@ -55,6 +55,7 @@ PYTHONPATH=/autograder/source exec /autograder/venv/bin/python -m instructor.gra
 """
 
 VISIBILITY = "visible"
+"""Who sees each test's result: ``autograder.json`` in the zip may say ``after_due_date`` instead (Gradescope's values)."""
 
 
 def _canonical(name):
@@ -81,7 +82,7 @@ def requirements():
     return [f"{name}=={version}" for name, version in sorted(pins.items())]
 
 
-def build(path, table, chapter, secret, limits, visibility=VISIBILITY):
+def build(path, table, chapter, secret, limits):
     """Write the autograder zip for ``chapter`` (the only chapter with coding exercises if ``None``)."""
     import ddg
 
@@ -97,7 +98,7 @@ def build(path, table, chapter, secret, limits, visibility=VISIBILITY):
                          f"(one of {', '.join(coded)})")
     coding = table[chapter]["coding"]
     inputs = grade.draw_inputs({chapter: table[chapter]}, secret)
-    config = {"chapter": chapter, "coding": coding, "inputs": inputs, "limits": limits, "visibility": visibility}
+    config = {"chapter": chapter, "coding": coding, "inputs": inputs, "limits": limits, "visibility": VISIBILITY}
     minor = sys.version_info[1]
     versions = " ".join(f"3.{m}" for m in [minor, *(m for m in (13, 12, 11) if m != minor)])
     package = pathlib.Path(ddg.__file__).parent
@@ -133,7 +134,6 @@ def _notebook(folder, chapter):
 
 def run(root="/autograder"):
     """Grade the submission in ``root/submission``; write ``root/results/results.json``."""
-    from ddg import checks
     from ddg.checks.judge import Call
 
     from . import grade
@@ -143,18 +143,18 @@ def run(root="/autograder"):
     config = json.loads((root / "source" / "autograder.json").read_text())
     chapter, coding, limits = config["chapter"], config["coding"], config["limits"]
     path, problem = _notebook(root / "submission", chapter)
-    tests, output = [], f"graded: {path.relative_to(root / 'submission')}" if path else problem
-    if path is not None:
-        _, cells, entries = grade.run_notebook(path.read_bytes(), coding, config["inputs"], limits)
+    if path is None:
+        cells, entries = [], {label: {"notebook": problem} for label in coding}
+    else:
+        _, cells, entries, problem = grade.run_notebook(path.read_bytes(), coding, config["inputs"], limits)
+    output = "\n".join(line for line in (path and f"graded: {path.relative_to(root / 'submission')}",
+                                          problem and f"✗ {problem}") if line)
+    tests = []
     for label, meta in coding.items():
-        if path is None:
-            result = {"points": 0, "max": meta.get("points", 1), "lines": [f"{label}: 0", f"  ✗ {problem}"]}
-        else:
-            calls = [Call(tuple(c["args"]), c["what"]) for c in config["inputs"][label]]
-            result = grade.assess(label, meta, entries[label], calls, cells, limits)
-        tests.append({"name": f"{label}: {meta['answer']} ({checks.CHECKS[meta['check']]})", "score": result["points"],
-                      "max_score": result["max"], "output": "\n".join(result["lines"]),
-                      "visibility": config.get("visibility", VISIBILITY)})
+        calls = [Call(tuple(c["args"]), c["what"]) for c in config["inputs"][label]]
+        result = grade.assess(label, meta, entries[label], calls, cells, limits)
+        tests.append({"name": f"{label}: {meta['answer']}", "score": result["points"], "max_score": result["max"],
+                      "output": "\n".join(result["lines"]), "visibility": config.get("visibility", VISIBILITY)})
     results = {"score": round(sum(t["score"] for t in tests), 2), "execution_time": round(time.monotonic() - start),
                "output": output, "tests": tests}
     (root / "results").mkdir(parents=True, exist_ok=True)

@@ -166,13 +166,13 @@ def hunt(write=True):
             socket.create_connection(address, timeout=2).close()
             found.append(f"connected to {address}")
         except OSError as error:
-            tried[f"connect {address[0]}"] = type(error).__name__
+            tried[f"connect {address[0]}"] = f"refused ({type(error).__name__})"
     for target in (str(here / "evil.py"), "/etc/evil", "/autograder/results/results.json") if write else ():
         try:
             open(target, "w").write("x")
             found.append(f"wrote {target}")
         except OSError as error:
-            tried[f"write {target}"] = type(error).__name__
+            tried[f"write {target}"] = f"refused ({type(error).__name__})"
     return tried, found
 
 

@@ -94,8 +94,8 @@ def test_a_submission_that_hunts_for_secrets_finds_nothing_and_scores_nothing(tm
     assert found == [], found
     assert tried["processes"] >= 1 and tried["files"] > 100 and tried["objects"] > 1000 and tried["frames"] > 1
     assert tried["descriptors"] >= 3 and tried["environment"] > 0
-    assert tried["connect 1.1.1.1"] == tried["connect 127.0.0.1"] == "OSError"
-    assert [tried[key] for key in tried if key.startswith("write ")] == ["OSError"] * 3
+    assert tried["connect 1.1.1.1"].startswith("refused") and tried["connect 127.0.0.1"].startswith("refused")
+    assert [tried[key][:7] for key in tried if key.startswith("write ")] == ["refused"] * 3
     assert "it raised RuntimeError: found nothing" in feedback(out, "mallory")  # in the answer's own process too
     assert by_student(out / "grades.csv")["mallory"]["ex-turning-angles"] == "0"
 
