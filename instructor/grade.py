@@ -404,7 +404,7 @@ def main(argv=None):
         k, n = int(match.group(1)), int(match.group(2))
         graded_here = submissions[k - 1::n]
     if not sandbox.available() and not args.merge:
-        print("note: no sandbox here (it needs Linux, root and util-linux's unshare, mount, chroot and setpriv): "
+        print("note: no sandbox here (it needs Linux, root, unshare, mount and chroot, and namespaces): "
               "each submission runs as you and can read what you can (see the README)", file=sys.stderr)
     start = time.monotonic()
     inputs = draw_inputs({c: table[c] for c in {s.chapter for s in graded_here}}, secret)

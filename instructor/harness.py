@@ -1,12 +1,12 @@
 """What runs inside the grading sandbox: one submission's answers, on input the grader sends.
 
-The grader (``instructor/sandbox.py``) starts ``python harness.py`` with a job on standard input::
+The grader (``instructor/sandbox.py``) runs :func:`main` with a job on standard input::
 
     {"cells": [source of each cell, or null for a markdown cell], "cell_timeout": s, "answer_timeout": s,
      "exercises": [{"label", "name" (the exercise in ddg.checks), "answer" (the function), "specs"}]}
 
-and reads what it finds, one JSON line per exercise, from file descriptor 3, which only this
-process holds. The job holds the input specs drawn by the grader, never the secret they were
+and reads what it finds, one JSON line per exercise, from the file descriptor the job names, which
+only this process holds. The job holds the input specs drawn by the grader, never the secret they were
 drawn from, and nothing here judges: the grader does, with the raw results.
 
 For each exercise, in a child process of its own:
@@ -398,10 +398,12 @@ def run_exercise(shell, cells, info, exercise, limits):
     return result
 
 
-def _preload():
-    """What the chapters import, loaded once here, before any child: each child starts with it."""
+def preload():
+    """What the chapters import, loaded once before any submission: each process forked for one starts with it
+    (the sandbox's zygote calls this; so does :func:`main`, where it then costs nothing)."""
     os.environ.setdefault("MPLBACKEND", "Agg")
-    for name in ("numpy", "shapely", "matplotlib.pyplot", "ddg", "ddg.checks", "ddg.plot", "ddg.explore"):
+    for name in ("numpy", "shapely", "matplotlib.pyplot", "ddg", "ddg.checks", "ddg.plot", "ddg.explore",
+                 "IPython.core.interactiveshell", "IPython.core.completer", "traitlets.config"):
         try:
             __import__(name)
         except Exception:  # noqa: BLE001 - a chapter that needs it will say so in its own cell
@@ -409,7 +411,9 @@ def _preload():
 
 
 def main():
-    job = json.load(sys.stdin)
+    """Run the job on standard input; write each exercise's result to the descriptor the job names."""
+    with open(0, "rb", closefd=False) as source:
+        job = json.load(source)
     results = os.fdopen(job["results_fd"], "w", buffering=1)
     os.set_inheritable(job["results_fd"], False)
     try:  # no process of the same user may read this one's memory or descriptors
@@ -418,16 +422,7 @@ def main():
         ctypes.CDLL(None).prctl(4, 0, 0, 0, 0)  # PR_SET_DUMPABLE 0
     except (OSError, AttributeError):
         pass
-    os.chdir(os.environ.get("HOME", "."))
-    fonts = os.environ.get("DDG_FONT_CACHE")  # matplotlib's font list, so that it is not built again
-    if fonts and os.path.isdir(fonts) and os.environ.get("MPLCONFIGDIR"):
-        os.makedirs(os.environ["MPLCONFIGDIR"], exist_ok=True)
-        for name in os.listdir(fonts):
-            if name.startswith("fontlist") and name.endswith(".json"):
-                with open(os.path.join(fonts, name), "rb") as source, \
-                        open(os.path.join(os.environ["MPLCONFIGDIR"], name), "wb") as target:
-                    target.write(source.read())
-    _preload()
+    preload()
     shell = _shell()
     cells = job["cells"]
     info = analyse(cells, shell.transform_cell)
@@ -436,7 +431,3 @@ def main():
         result = run_exercise(shell, cells, info, exercise, limits)
         results.write(json.dumps(result) + "\n")
     results.write(json.dumps({"done": True}) + "\n")
-
-
-if __name__ == "__main__":
-    main()

@@ -16,7 +16,7 @@ def failure_kind(problem):
     """What a check's first problem says, without the input it was seen on or the numbers."""
     if problem is None:
         return None
-    text = re.split(r" \(on | \(expected |: on ", problem, maxsplit=1)[0]
+    text = re.split(r" \(on | \(expected |: on | \(Expecting", problem, maxsplit=1)[0]
     if text.startswith("on "):  # the plain facts: "on <input>[, at vertex i]: expected ..., got ..." and the like
         raised = re.search(r" raised (\w+)", text)
         text = (f"raised {raised.group(1)}" if raised else "wrong shape" if "should have shape" in text
@@ -26,7 +26,8 @@ def failure_kind(problem):
     return re.sub(r"\d+(\.\d+)?", "#", text)[:160]
 
 
-def _figure(chapters, table, records):
+def _figure(chapters, table, records, rows):
+    """The scores of each coding exercise and the totals as small histograms, and the share passing each check."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -35,20 +36,30 @@ def _figure(chapters, table, records):
     labels = [label for c in chapters for label in table[c]["coding"]]
     if not labels:
         return None
-    fig, axes = plt.subplots(len(labels) + 1, 1, figsize=(7, 2.1 * (len(labels) + 1)), layout="constrained")
-    for ax, label in zip(axes, labels):
-        points = [r["points"][label] for r in records if label in r["points"]]
-        top = max([r["max"][label] for r in records if label in r["max"]], default=1)
-        values = sorted(set(points) | {0, top})
+    panels = [(label, [r["points"][label] for r in records if label in r["points"]],
+               max([r["max"][label] for r in records if label in r["max"]], default=1)) for label in labels]
+    panels.append(("total", [row["total"] for row in rows], None))
+    columns = min(3, len(panels) + 1)
+    lines = -(-(len(panels) + 1) // columns)
+    fig, axes = plt.subplots(lines, columns, figsize=(3.2 * columns, 2.4 * lines), layout="constrained", squeeze=False)
+    axes = axes.ravel()
+    for ax, (label, points, top) in zip(axes, panels):
         counts = collections.Counter(points)
+        values = sorted(set(points) | ({0, top} if top is not None else set()))
         ax.bar([f"{v:g}" for v in values], [counts[v] for v in values], color="#3b6ea5")
-        ax.set_title(f"{label}: score (of {top:g}), students", loc="left", fontsize=10)
+        ax.set_title(f"{label}" + (f" (of {top:g})" if top is not None else ""), loc="left", fontsize=9)
+        ax.set_ylabel("students", fontsize=8)
+        ax.tick_params(labelsize=8)
         ax.yaxis.get_major_locator().set_params(integer=True)
     passing = [sum(r["problem"][label] is None for r in records if label in r["problem"])
                / max(1, sum(label in r["problem"] for r in records)) for label in labels]
-    axes[-1].barh(labels[::-1], [100 * p for p in passing[::-1]], color="#2f7d4f")
-    axes[-1].set_xlim(0, 100)
-    axes[-1].set_title("share of students whose answer passed the check (%)", loc="left", fontsize=10)
+    ax = axes[len(panels)]
+    ax.barh(labels[::-1], [100 * p for p in passing[::-1]], color="#2f7d4f")
+    ax.set_xlim(0, 100)
+    ax.set_title("passed the check (% of students)", loc="left", fontsize=9)
+    ax.tick_params(labelsize=8)
+    for ax in axes[len(panels) + 1:]:
+        ax.set_visible(False)
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png", dpi=110)
     plt.close(fig)
@@ -61,9 +72,10 @@ def write(path, records, rows, chapters, table):
     e = html.escape
     parts = [f"<h1>Class report: {e(', '.join(chapters))}</h1>",
              f"<p>{len(records)} submissions graded, {len(rows)} students.</p>"]
-    figure = _figure(chapters, table, records)
+    figure = _figure(chapters, table, records, rows)
     if figure:
-        parts.append(f'<img src="data:image/png;base64,{figure[0]}" alt="Scores per exercise. {e(figure[1])}">')
+        parts.append(f'<img src="data:image/png;base64,{figure[0]}" alt="Scores per exercise and in total, and the '
+                     f'share of students whose answer passed each check: {e(figure[1])}">')
     parts.append("<h2>Per exercise</h2><table><tr><th>exercise</th><th>points</th><th>mean</th><th>passed</th>"
                  "<th>most common first failure</th><th>students</th></tr>")
     for chapter in chapters:
