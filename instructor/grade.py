@@ -393,6 +393,8 @@ def main(argv=None):
     unknown = [label for label in args.only if not any(label in c["coding"] for c in table.values())]
     if unknown:
         p.error(f"--only {unknown[0]}: no coding exercise has this label")
+    if args.merge and (args.only or args.student):
+        p.error("--merge runs no notebook: --only and --student go with a run that grades")
     strangers = [s for s in args.student if s not in {sub.student for sub in submissions}]
     if strangers:
         p.error(f"--student {strangers[0]}: no submission of this student")
