@@ -4,9 +4,10 @@ A submission belongs to
 
 * the student named by its folder: ``submissions/alice/03_winding_number.ipynb`` is Alice's (any
   depth below the folder given on the command line; the first folder is the student); or, for a
-  notebook directly in the folder given (or given itself),
+  notebook directly in the folder given,
 * the student named by its file name before the chapter: ``alice_03_winding_number.ipynb`` or
-  ``alice-03_winding_number.ipynb``.
+  ``alice-03_winding_number.ipynb``. A notebook given by itself (``submissions/*/*.ipynb``) belongs
+  to the name in front of the chapter, or else to its folder.
 
 With a roster, that name must be a student's ``id`` (or ``canvas_id``), or contain exactly one as
 a part between underscores, as Canvas's downloads do (``liddellalice_1234_5678_03_winding_number.ipynb``
@@ -66,10 +67,11 @@ def read_roster(path):
 
 
 def _notebooks(argument):
-    """``(path, student folder or None)`` for every notebook an argument names."""
+    """``(path, folder, given)`` for every notebook an argument names: the student's folder (``None`` for a
+    notebook directly in the folder given), and whether the notebook was given by itself."""
     argument = pathlib.Path(argument)
-    if argument.is_file():
-        return [(argument, None)]
+    if argument.is_file():  # given by itself, say by a shell's glob: its name, else its folder, says whose
+        return [(argument, argument.resolve().parent.name, True)]
     if not argument.is_dir():
         raise FileNotFoundError(f"{argument}: no such file or folder")
     found = []
@@ -77,7 +79,7 @@ def _notebooks(argument):
         parts = path.relative_to(argument).parts
         if any(part.startswith(".") for part in parts):  # .ipynb_checkpoints and the like
             continue
-        found.append((path, parts[0] if len(parts) > 1 else None))
+        found.append((path, parts[0] if len(parts) > 1 else None, False))
     return found
 
 
@@ -108,13 +110,14 @@ def collect(arguments, chapters, roster=None):
     """``(submissions, problems)``: each notebook mapped to a student and a chapter, and what could not be."""
     problems, found = [], {}
     for argument in arguments:
-        for path, folder in _notebooks(argument):
+        for path, folder, given in _notebooks(argument):
             chapter, at = _chapter(path.stem, chapters)
             if chapter is None:
                 problems.append(f"{path}: not graded: its name names no chapter of the book with exercises "
                                 f"({', '.join(sorted(chapters))})")
                 continue
-            token = folder if folder is not None else path.stem[:at].rstrip("_-. ")
+            prefix = path.stem[:at].rstrip("_-. ")
+            token = (prefix or folder) if given else folder if folder is not None else prefix
             if not token:
                 problems.append(f"{path}: not graded: whose is it? Put it in a folder named after the student "
                                 f"(alice/{path.name}) or name it alice_{chapter}.ipynb")

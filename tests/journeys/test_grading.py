@@ -40,21 +40,24 @@ def test_students_are_told_apart_and_nothing_is_guessed(tmp_path):
     submission(subs / "frank" / NOTEBOOK)
     submission(subs / f"frank_{NOTEBOOK}")  # Frank twice
     submission(subs / "grace" / "homework.ipynb")  # no chapter in its name
+    late = submission(tmp_path / "late" / "carol" / NOTEBOOK)  # given by itself, as a shell's glob gives it
     roster = tmp_path / "roster.csv"
     roster.write_text("id,name,email,section,canvas_id\nalice,Alice Liddell,alice@uni.edu,A,1111\n"
                       "bob,Bob Dodgson,bob@uni.edu,A,\ncarol,Carol Hare,carol@uni.edu,B,\n"
-                      "dave,Dave Liddell,dave@uni.edu,B,4321\nfrank,Frank Tenniel,,B,\ngrace,Grace Dormouse,,A,\n")
+                      "dave,Dave Liddell,dave@uni.edu,B,4321\nfrank,Frank Tenniel,,B,\ngrace,Grace Dormouse,,A,\n"
+                      "henry,Henry Hatter,henry@uni.edu,A,\n")
 
-    result = grade(subs, "--roster", roster, "--seed", "a secret", "--out", out)
+    result = grade(subs, late, "--roster", roster, "--seed", "a secret", "--out", out)
 
     table = rows(out / "grades.csv")
     assert table[0] == ["student_id", "name", "ex-rebuild", "ex-turning-angles", "ex-turning-three", "total"]
     assert {row[0]: row[1:] for row in table[1:]} == {
         "alice": ["Alice Liddell", "1", "1", "", "2"], "bob": ["Bob Dodgson", "0", "1", "", "1"],
-        "carol": ["Carol Hare", "", "", "", "0"], "dave": ["Dave Liddell", "1", "1", "", "2"],
-        "frank": ["Frank Tenniel", "", "", "", "0"], "grace": ["Grace Dormouse", "", "", "", "0"]}
+        "carol": ["Carol Hare", "1", "1", "", "2"], "dave": ["Dave Liddell", "1", "1", "", "2"],
+        "frank": ["Frank Tenniel", "", "", "", "0"], "grace": ["Grace Dormouse", "", "", "", "0"],
+        "henry": ["Henry Hatter", "", "", "", "0"]}
     written = sorted(p.relative_to(out / "feedback").as_posix() for p in (out / "feedback").rglob("*.txt"))
-    assert written == [f"{s}/{CHAPTER}.txt" for s in ("alice", "bob", "dave")]
+    assert written == [f"{s}/{CHAPTER}.txt" for s in ("alice", "bob", "carol", "dave")]
     assert feedback(out, "alice").startswith(f"{CHAPTER}: Alice Liddell (alice)")
     assert "ex-rebuild: 0/1" in feedback(out, "bob") and "the turns go the wrong way" in feedback(out, "bob")
     problems = (out / "problems.txt").read_text()
@@ -69,7 +72,7 @@ def test_students_are_told_apart_and_nothing_is_guessed(tmp_path):
                           ["Points Possible", "", "", "", "", "3"]]
     assert canvas[2] == ["Alice Liddell", "1111", "alice", "alice@uni.edu", "A", "2"]
     assert ["Dave Liddell", "4321", "dave", "dave@uni.edu", "B", "2"] in canvas
-    assert ["Carol Hare", "", "carol", "carol@uni.edu", "B", ""] in canvas
+    assert ["Henry Hatter", "", "henry", "henry@uni.edu", "A", ""] in canvas
 
     duplicate = tmp_path / "duplicate.csv"
     duplicate.write_text("id,name\nalice,Alice\nalice,Alicia\n")
