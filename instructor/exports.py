@@ -225,12 +225,10 @@ def executed_notebook(nb, entries):
     return nb
 
 
-def write_all(records, table, roster, out, problems, policy, manual_path=None):
-    """Every output of a grading run in ``out``; returns the main files written."""
+def write_all(records, table, roster, out, problems, policy, manual):
+    """Every output of a grading run in ``out`` (``manual``: what :func:`read_manual` read); the main files."""
     out = pathlib.Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    students = set(roster or ()) | {r["student"] for r in records}
-    manual = read_manual(manual_path, table, students) if manual_path else {}
     rows, chapters = gradebook(records, table, roster, manual, policy)
     write_grades(out / "grades.csv", rows, chapters, table, policy)
     write_canvas(out / "canvas.csv", rows, chapters, table, roster)

@@ -388,6 +388,8 @@ def main(argv=None):
         roster = rosters.read_roster(args.roster) if args.roster else None
         submissions, problems = rosters.collect(args.submissions, table, roster)
         policy = exports.late_policy(args.deadline, args.submitted, args.late_penalty, args.late_cutoff)
+        students = set(roster or ()) | {s.student for s in submissions}
+        manual = exports.read_manual(args.merge_manual, table, students) if args.merge_manual else {}
     except (OSError, ValueError) as error:
         p.error(str(error))
     unknown = [label for label in args.only if not any(label in c["coding"] for c in table.values())]
@@ -420,10 +422,7 @@ def main(argv=None):
         print(f"shard {args.shard}: graded {len(records)} of {len(submissions)} submissions in {seconds:.0f} s; "
               f"when every shard is done: python -m instructor.grade ... --merge --out {out}")
         return
-    try:
-        written = exports.write_all(records, table, roster, out, problems, policy, args.merge_manual)
-    except (OSError, ValueError) as error:
-        p.error(str(error))
+    written = exports.write_all(records, table, roster, out, problems, policy, manual)
     cached = sum(r["cached"] for r in records)
     print(f"graded {len(records)} submissions ({cached} from earlier results) in {seconds:.0f} s")
     for path in written:

@@ -176,6 +176,7 @@ def _enter(request):
             libc.prctl(1, signal.SIGKILL, 0, 0, 0)  # PR_SET_PDEATHSIG: killing the face kills the whole sandbox
             subprocess.run(["sh", "-c", request["script"]], check=True, stdout=2)
             os.chroot(request["root"])
+            os.chdir("/")
             for capability in range(64):
                 libc.prctl(24, capability, 0, 0, 0)  # PR_CAPBSET_DROP
         if os.geteuid() == 0:
