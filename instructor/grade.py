@@ -1,69 +1,47 @@
-"""Grade a class: ``python -m instructor.grade SUBMISSIONS... --out grades.csv [--seed SECRET]``.
+"""Grade a class: ``python -m instructor.grade SUBMISSIONS... --seed-file SECRET --out grading``.
 
-Each submission is a completed notebook of the student edition. For each one the grader
+SUBMISSIONS are folders (one subfolder per student, or files named ``<student>_<chapter>.ipynb``)
+or notebooks; ``instructor/roster.py`` says how each maps to one student and one chapter. For each
+submission the grader
 
-1. finds its chapter (the notebook's ``ddg.chapter`` metadata, else its file name) and that
-   chapter's coding exercises, with their points, in the *instructor's* notebook (``--book``,
-   metadata ``ddg.exercises``): a student cannot change what is graded or how much it counts;
-2. runs the submission in its own process, in an empty temporary directory, with limits on time,
-   memory and file size. On Linux, run as root, it also runs in a sandbox (:data:`SANDBOX`): no
-   network, every file outside its folder read-only, no privileges; so it cannot change the
-   grader's files or another submission's. Elsewhere it runs as the grader's user: grade there
-   only notebooks you would run yourself, or inside a container;
-3. there, executes every cell (a cell that fails or loops is stopped and skipped; a cell that
-   kills the kernel is skipped after a restart), then runs each exercise's answer on input drawn
-   from a seed derived from ``--seed`` (a secret the students never see) and sends back only
-   what the answers returned;
-4. judges those results itself, with the same checks the students use (``ddg.checks``).
+1. takes the chapter's coding exercises, their points and their checks from the *instructor's*
+   notebooks (``--book``, metadata ``ddg.exercises``), and its written exercises from the
+   ``{exercise}`` blocks there: never from the submission;
+2. draws each exercise's input here, once for the class, from the secret (``seed_for``);
+3. runs the cells each answer needs, then the answer on that input, in the sandbox of
+   ``instructor/sandbox.py`` (which never receives the secret), through ``instructor/harness.py``;
+4. judges the raw results here, with the students' own checks (``ddg.checks``), and writes
+   feedback that says what happened, with the executed notebook beside it.
 
-It writes one CSV row per submission (``submission``, one column per exercise label with its
-points, ``total``) and a feedback file per submission next to the CSV (what passed, and the first
-problem of what did not). Submissions are graded in parallel, one per core.
+Results are cached per notebook content (``DIR/cache``): a second run grades only what changed,
+``--only`` and ``--student`` grade again what they name, and ``--shard K/N`` with ``--merge`` splits
+a class over machines. The grades, the Canvas file, the feedback and the class report are written
+by ``instructor/exports.py`` and ``instructor/report.py``; ``--gradescope-autograder`` writes a
+Gradescope autograder instead (``instructor/gradescope.py``).
 """
 
 import argparse
+import collections
 import concurrent.futures
-import csv
+import functools
 import hashlib
 import json
 import os
 import pathlib
+import re
 import secrets
-import shutil
-import signal
-import subprocess
 import sys
-import tempfile
+import time
 
-import numpy as np
-
+import ddg
 from ddg import checks
-from ddg._extras import missing
+from ddg.checks.judge import Call, judge, printable, right_inputs
 
-MARKER = "ddg-grade-results: "
+from . import exports, roster as rosters, sandbox
 
-SANDBOX = """
-set -e
-mount --make-rprivate /
-awk '{print $5}' /proc/self/mountinfo | sort -r | while read -r m; do
-    mount -o remount,bind,ro "$m" 2>/dev/null || true
-done
-mount --bind "$WORK" "$WORK"
-mount -o remount,bind,rw "$WORK"
-exec setpriv --bounding-set=-all --inh-caps=-all --no-new-privs -- "$@"
-"""
-"""Run by ``sh`` in new mount, network and process namespaces (``unshare``): every mount read-only
-but the submission's folder ``$WORK``, then every capability dropped, so that nothing can be
-mounted writable again. The network namespace has only loopback, and it is down. When the grader
-ends the sandbox, every process in it ends too (kernels included)."""
-
-
-def _sandbox():
-    """The command prefix that puts a submission in :data:`SANDBOX`, or ``[]`` where it cannot."""
-    tools = [shutil.which(tool) for tool in ("unshare", "setpriv", "mount", "awk")]
-    if sys.platform.startswith("linux") and hasattr(os, "geteuid") and os.geteuid() == 0 and all(tools):
-        return [tools[0], "--mount", "--net", "--pid", "--fork", "--kill-child", "sh", "-c", SANDBOX, "sandbox"]
-    return []
+LIMITS = {"timeout": 180, "cell_timeout": 30, "answer_timeout": checks.TIME_LIMIT, "memory": 4096}
+EXERCISE_BLOCK = re.compile(r"(?:`{3,}|:{3,})\{exercise\}[^\n]*\n((?:[ \t]*:[\w-]+:[^\n]*\n)*)")
+MAX_NOTEBOOK = 32 << 20
 
 
 def seed_for(secret, label):
@@ -72,205 +50,387 @@ def seed_for(secret, label):
 
 
 def exercises(book):
-    """``{chapter: {label: {"answer", "check", "points"}}}`` from the instructor's notebooks."""
+    """``{chapter: {"coding": {label: {answer, check, points[, partial]}}, "written": {label: points}}}``.
+
+    From the instructor's notebooks: the metadata ``ddg.exercises`` (an entry without ``check`` is a
+    written exercise with its ``points``), and every other ``{exercise}`` block's label (1 point).
+    """
     table = {}
     for path in sorted(pathlib.Path(book).glob("*.ipynb")):
-        meta = json.loads(path.read_text()).get("metadata", {}).get("ddg", {})
-        if meta.get("exercises"):
-            table[meta.get("chapter", path.stem)] = meta["exercises"]
+        nb = json.loads(path.read_text())
+        meta = nb.get("metadata", {}).get("ddg", {}).get("exercises") or {}
+        coding = {label: e for label, e in meta.items() if "check" in e}
+        for label, e in coding.items():
+            if e["check"] not in checks.CHECKS:
+                raise ValueError(f"{path}: exercise {label}: ddg.checks has no `{e['check']}`")
+        labels = [m.group(1) for cell in nb["cells"] if cell["cell_type"] == "markdown"
+                  for block in EXERCISE_BLOCK.findall("".join(cell["source"]))
+                  for m in [re.search(r":label:\s*(\S+)", block)] if m]
+        written = {label: 1 for label in labels if label not in coding}
+        written.update({label: e.get("points", 1) for label, e in meta.items() if "check" not in e})
+        if coding or written:
+            table[path.stem] = {"coding": coding, "written": written}
     return table
 
 
-def chapter_of(submission, table):
-    """The chapter a submission belongs to: its metadata, else the chapter named in its file name."""
+def draw_inputs(table, secret):
+    """``{label: [{"args": specs, "what": description}]}``: every coding exercise's input, drawn once."""
+    inputs = {}
+    for chapter in table.values():
+        for label, e in chapter["coding"].items():
+            calls = checks.draw(checks.CHECKS[e["check"]], seed_for(secret, label))
+            inputs[label] = json.loads(json.dumps([{"args": list(c.args), "what": c.what} for c in calls]))
+    return inputs
+
+
+@functools.cache
+def version():
+    """What a cached result depends on besides the submission and its input: ddg and the harness."""
+    digest = hashlib.sha256()
+    for path in sorted(pathlib.Path(ddg.__file__).parent.rglob("*.py")) + [sandbox.HARNESS, pathlib.Path(sandbox.__file__)]:
+        digest.update(path.read_bytes())
+    return digest.hexdigest()[:16]
+
+
+# ------------------------------------------------------------------ running a notebook (or not)
+
+
+def parse_notebook(data):
+    """``(cells, problem)``: the sources of a notebook's cells (``None`` for the ones that are not code)."""
+    if len(data) > MAX_NOTEBOOK:
+        return None, f"not a notebook: {len(data) >> 20} MB is more than the grader reads ({MAX_NOTEBOOK >> 20} MB)"
     try:
-        chapter = json.loads(pathlib.Path(submission).read_text()).get("metadata", {}).get("ddg", {}).get("chapter")
-    except (OSError, ValueError, AttributeError):
-        chapter = None
-    if chapter in table:
-        return chapter
-    return next((c for c in table if c in pathlib.Path(submission).name), None)
+        nb = json.loads(data.decode("utf-8"))
+    except UnicodeDecodeError:
+        return None, "not a notebook: the file is not UTF-8 text"
+    except ValueError as error:
+        return None, f"not a notebook: the file is not valid JSON ({error})"
+    if not isinstance(nb, dict) or not isinstance(nb.get("cells"), list):
+        return None, "not a notebook: it is JSON, but without a list of cells"
+    cells = []
+    for i, cell in enumerate(nb["cells"], start=1):
+        source = cell.get("source", "") if isinstance(cell, dict) else None
+        if isinstance(source, list) and all(isinstance(s, str) for s in source):
+            source = "".join(source)
+        if not isinstance(source, str):
+            return None, f"not a notebook: cell {i} has no text"
+        cells.append(source if cell.get("cell_type") == "code" else None)
+    return (nb, cells), None
 
 
-# ------------------------------------------------------------------ inside the sandbox
+class Cache:
+    """Raw results by notebook content and exercise, in ``folder``; an entry is used only under its key."""
 
+    def __init__(self, folder):
+        self.folder = pathlib.Path(folder)
 
-EVALUATE = """
-import json as _json
-from ddg.checks import answer_results as _results
-print({marker!r} + _json.dumps({{
-    _label: _results(_name, globals().get(_answer), _seed, {limit!r})
-    for _label, _name, _answer, _seed in {jobs!r}
-}}))
-"""
+    def _path(self, sha, label):
+        return self.folder / sha[:2] / sha / f"{label}.json"
 
-
-def run_one(notebook, jobs, cell_timeout, limit):
-    """In the sandbox: execute ``notebook``, then the answers; print the raw results (one line)."""
-    try:
-        import nbformat
-        from jupyter_client import AsyncKernelManager
-        from nbclient import NotebookClient
-        from nbclient.exceptions import DeadKernelError
-    except ImportError as error:
-        raise missing("grade", error) from error
-
-    nb = nbformat.read(notebook, as_version=4)
-    code = [cell for cell in nb.cells if cell.cell_type == "code"]
-    evaluate = nbformat.v4.new_code_cell(EVALUATE.format(marker=MARKER, jobs=jobs, limit=limit))
-    skipped = set()
-    for _ in range(4):  # a cell that kills the kernel is skipped, and the notebook runs again
-        # sockets are files in this folder: no TCP, so the kernel works without a network
-        manager = AsyncKernelManager(kernel_name="python3", transport="ipc", ip=str(pathlib.Path("kernel").resolve()))
-        client = NotebookClient(nbformat.v4.new_notebook(cells=[*code, evaluate]), km=manager,
-                                interrupt_on_timeout=True, allow_errors=True,
-                                timeout_func=lambda cell: limit * (len(jobs) + 1) if cell is evaluate else cell_timeout)
+    def load(self, sha, label, key):
         try:
-            with client.setup_kernel():
-                for i, cell in enumerate(code):
-                    if i not in skipped:
-                        current = i
-                        client.execute_cell(cell, i)
-                current = len(code)
-                client.execute_cell(evaluate, len(code))
-            break
-        except DeadKernelError:
-            if current == len(code):
-                break
-            skipped.add(current)
-    lines = [o.get("text", "") for o in evaluate.get("outputs", []) if o.get("output_type") == "stream"]
-    results = next((line[len(MARKER):] for line in "".join(lines).splitlines()[::-1] if line.startswith(MARKER)),
-                   "{}")
-    print(MARKER + json.dumps({"results": json.loads(results), "skipped": sorted(skipped)}))
+            data = json.loads(self._path(sha, label).read_text())
+        except (OSError, ValueError):
+            return None
+        return data.get("entry") if data.get("key") == key else None
+
+    def store(self, sha, label, key, entry):
+        path = self._path(sha, label)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        temporary = path.with_suffix(f".{os.getpid()}.tmp")
+        temporary.write_text(json.dumps({"key": key, "entry": entry}))
+        os.replace(temporary, path)
 
 
-# ------------------------------------------------------------------ the grader
+def run_notebook(data, coding, inputs, limits, cache=None, force=(), cached_only=False):
+    """``(notebook, cells, {label: entry}, problem)``: what the harness found for each exercise (or the
+    cache), or why the file is not a notebook."""
+    parsed, problem = parse_notebook(data)
+    if problem:
+        return None, None, {label: {"notebook": problem} for label in coding}, problem
+    nb, cells = parsed
+    sha = hashlib.sha256(data).hexdigest()
+    keys = {label: hashlib.sha256(json.dumps([sha, label, e, inputs[label], limits, version()],
+                                             sort_keys=True).encode()).hexdigest() for label, e in coding.items()}
+    entries = {}
+    for label in coding:
+        if cache is not None and label not in force:
+            entry = cache.load(sha, label, keys[label])
+            if entry is not None:
+                entries[label] = {**entry, "cached": True}
+    todo = [label for label in coding if label not in entries]
+    if todo and cached_only:
+        entries.update({label: {"ungraded": True} for label in todo})
+    elif todo:
+        job = {"cells": cells, "cell_timeout": limits["cell_timeout"], "answer_timeout": limits["answer_timeout"],
+               "exercises": [{"label": label, "name": checks.CHECKS[coding[label]["check"]], "answer":
+                              coding[label]["answer"], "specs": [c["args"] for c in inputs[label]]} for label in todo]}
+        reports, facts = sandbox.run(job, limits["timeout"], limits["memory"] << 20)
+        found = {r.get("label"): r for r in reports if isinstance(r, dict)}
+        for label in todo:
+            entry = found.get(label)
+            if entry is None:
+                entries[label] = {"failed": facts}
+                continue
+            entry["oom_kills"] = facts["oom_kills"]
+            entries[label] = entry
+            if cache is not None:
+                cache.store(sha, label, keys[label], entry)
+    return nb, cells, entries, None
 
 
-def _limits(memory, cpu):
-    """Resource limits for the sandboxed process (run in the child before it starts)."""
-    import resource
-
-    def apply():
-        os.setsid()
-        resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
-        resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 5))
-        resource.setrlimit(resource.RLIMIT_FSIZE, (50 << 20, 50 << 20))
-    return apply
+# ------------------------------------------------------------------ what happened, in words
 
 
-def grade_one(submission, table, secret, timeout, memory, cell_timeout, answer_timeout=checks.TIME_LIMIT):
-    """Grade one submission: ``(points by label, feedback lines)``."""
-    chapter = chapter_of(submission, table)
-    if chapter is None:
-        return {}, ["not graded: no chapter of the book with coding exercises matches this notebook"]
-    labels = table[chapter]
-    jobs = [(label, e["check"].removeprefix("check_"), e["answer"], seed_for(secret, label))
-            for label, e in labels.items()]
-    with tempfile.TemporaryDirectory(prefix="ddg-grade-") as work:
-        work = pathlib.Path(work)
-        shutil.copy(submission, work / "submission.ipynb")
-        for name in ("runtime", "ipython", "matplotlib"):
-            (work / name).mkdir()
-        try:  # matplotlib's font list, so that each submission does not rebuild it
-            import matplotlib
+def _cells(indices):
+    numbers = [str(int(i) + 1) for i in indices]
+    return ("cell " if len(numbers) == 1 else "cells ") + ", ".join(numbers)
 
-            for cache in pathlib.Path(matplotlib.get_cachedir()).glob("fontlist*.json"):
-                shutil.copy(cache, work / "matplotlib")
-        except ImportError:
-            pass
-        env = {"PATH": os.environ.get("PATH", "/usr/bin:/bin"), "HOME": str(work), "MPLBACKEND": "Agg",
-               "JUPYTER_RUNTIME_DIR": str(work / "runtime"), "IPYTHONDIR": str(work / "ipython"),
-               "MPLCONFIGDIR": str(work / "matplotlib"), "PYTHONPATH": os.pathsep.join(sys.path[1:]),
-               "PYDEVD_DISABLE_FILE_VALIDATION": "1", "TMPDIR": str(work), "WORK": str(work)}
-        command = [*_sandbox(), sys.executable, "-m", "instructor.grade", "--run-one", str(work / "submission.ipynb"),
-                   "--jobs-json", json.dumps(jobs), "--cell-timeout", str(cell_timeout),
-                   "--answer-timeout", str(answer_timeout)]
-        with tempfile.TemporaryFile() as log:  # the grader's own file: only the runner's output lands here
-            process = subprocess.Popen(command, cwd=work, env=env, stdout=log, stderr=subprocess.STDOUT,
-                                       stdin=subprocess.DEVNULL, preexec_fn=_limits(memory, timeout))
-            try:
-                process.wait(timeout=timeout)
-            except subprocess.TimeoutExpired:
-                pass
-            finally:
-                try:
-                    os.killpg(process.pid, signal.SIGKILL)  # the sandbox, and with it every process inside
-                except ProcessLookupError:
-                    pass
-                process.wait()
-            log.seek(max(0, log.seek(0, os.SEEK_END) - (16 << 20)))
-            output = log.read()
-    line = next((line for line in output.decode(errors="replace").splitlines()[::-1] if line.startswith(MARKER)), None)
+
+def _head(cells, i):
+    line = next((line.strip() for line in (cells[int(i)] or "").splitlines() if line.strip()), "")
+    return printable(line if len(line) <= 40 else line[:37] + "...")
+
+
+def cell_story(entry, cells, limits):
+    """Lines on the cells that ran for one exercise: which, and each error, stop or crash."""
+    if not entry.get("ran") and not entry.get("stopped"):
+        return []
+    lines = [f"ran {_cells(entry['ran'])} of {len(cells)} (the cells the answer needs)"] if entry.get("ran") else []
+    for i, cell in entry.get("cells", {}).items():
+        error = cell.get("error")
+        if cell.get("timeout"):
+            lines.append(f"cell {int(i) + 1} ({_head(cells, i)}) was stopped at its time limit of "
+                         f"{limits['cell_timeout']:g} s (an endless loop?)")
+        elif error:
+            lines.append(f"cell {int(i) + 1} ({_head(cells, i)}) raised {printable(error['ename'])}: "
+                         f"{printable(error['evalue'])[:200]}")
+    for stop in entry.get("stopped", []):
+        if stop.get("cell") is None:
+            lines.append("the answer's process did not end in time and was stopped")
+            continue
+        where = f"cell {int(stop['cell']) + 1} ({_head(cells, stop['cell'])})"
+        how = stop.get("how", "")
+        if stop["why"] == "time":
+            what = f"did not stop at its time limit of {limits['cell_timeout']:g} s and was killed"
+        elif stop["why"] == "flood":
+            what = "printed more than the grader reads"
+        elif how == "signal 9" and entry.get("oom_kills"):
+            what = f"was killed for using more memory than the limit ({limits['memory']} MB)"
+        elif how.startswith("signal"):
+            what = f"crashed the Python process ({how})"
+        else:
+            what = f"ended the Python process (os._exit or a crash: {how})"
+        lines.append(f"{where} {what}; the other cells ran again without it")
+    return lines
+
+
+def _failed(facts, limits):
+    if facts.get("timed_out"):
+        return f"the notebook did not finish within {limits['timeout']:g} s (the limit for a whole submission)"
+    tail = " ".join(facts.get("log", "").split()[-40:])
+    return f"the grader could not run this notebook ({tail or 'no message'}): tell your instructor"
+
+
+def assess(label, meta, entry, calls, cells, limits):
+    """``{"points", "max", "lines", "problem", "right"}`` for one exercise of one submission."""
+    name, answer, points = checks.CHECKS[meta["check"]], meta["answer"], meta.get("points", 1)
+    exercise, raw, notes = checks.EXERCISES[name], entry.get("raw"), []
+    if "notebook" in entry:
+        problem = entry["notebook"]
+    elif entry.get("ungraded"):
+        problem = "not graded: no shard has graded this notebook"
+    elif "missing" in entry:
+        syntax = entry["missing"]["syntax"]
+        defining = [i for i, (_, _, defines) in syntax.items() if defines]
+        if defining:
+            line, message, _ = syntax[defining[-1]]
+            problem = (f"{_cells(defining[-1:])}, which defines `{answer}`, has a SyntaxError on line {line}: "
+                       f"{printable(message)}; the cell cannot run")
+        else:
+            problem = f"no `{answer}` in your notebook: no cell defines it" + (
+                f" ({_cells(syntax)} could not be read: a SyntaxError)" if syntax else "")
+    elif "failed" in entry:
+        problem = _failed(entry["failed"], limits)
+    elif entry.get("answer") is None:
+        problem = f"`{answer}` was not defined after the cells that define it ran (see below)"
+    else:
+        verdict = judge(exercise, calls, raw, answer)
+        problem, notes = verdict.problem, verdict.notes
+    if "notebook" in entry:  # said once for the notebook, above the exercises
+        return {"points": 0, "max": points, "lines": [f"{label}: 0/{points:g}"], "problem": problem,
+                "right": [0, len(calls)]}
+    right = right_inputs(exercise, calls, raw) if raw is not None else [False] * len(calls)
+    earned = points if problem is None else round(points * sum(right) / len(calls), 2) if meta.get("partial") else 0
+    verdict_line = (f"✓ {answer} passed on {len(calls)} fresh random inputs" if problem is None
+                    else f"✗ {answer}: {printable(problem)}")
+    lines = [f"{label}: {earned:g}/{points:g}" + (f" ({sum(right)} of {len(calls)} inputs right)"
+                                                    if meta.get("partial") and problem else ""), "  " + verdict_line]
+    wrong = collections.Counter(c.what for c, r in zip(calls, right) if not r)
+    if problem is not None and isinstance(raw, list) and wrong:
+        lines.append(f"  wrong on {sum(wrong.values())} of {len(calls)} inputs: " + "; ".join(
+            what + (f" (x{count})" if count > 1 else "") for what, count in wrong.items()))
+    lines += [f"  note: {printable(note)}" for note in notes]
+    lines += ["  " + line for line in cell_story(entry, cells or [], limits)]
+    return {"points": earned, "max": points, "lines": lines, "problem": problem, "right": [sum(right), len(calls)]}
+
+
+# ------------------------------------------------------------------ a class
+
+
+def grade_one(submission, table, inputs, limits, out, forced, cached_only):
+    """The record of one submission (the fields ``exports`` reads); its executed notebook is written to ``out``."""
+    coding = table[submission.chapter]["coding"]
     try:
-        report = json.loads(line[len(MARKER):])
-    except (TypeError, ValueError):
-        report, line = {"results": {}, "skipped": []}, None
-    points, feedback = {}, []
-    if line is None:
-        feedback.append(f"the notebook did not finish within {timeout} s or within the memory limit")
-    for label, e in labels.items():
-        raw = report["results"].get(label, {"error": "not graded: the notebook stopped before this exercise"})
-        exercise = checks.EXERCISES[e["check"].removeprefix("check_")]
-        calls, context = exercise.draw(np.random.default_rng(seed_for(secret, label)))
-        verdict = checks.judge(exercise, calls, raw, context)
-        verdict.name = e["answer"]
-        points[label] = e["points"] if verdict else 0
-        feedback.append(f"{label} ({points[label]}/{e['points']}): {verdict!r}")
-    if report.get("skipped"):
-        feedback.append(f"code cells {report['skipped']} stopped the kernel and were skipped")
-    return points, feedback
+        data = submission.path.read_bytes()
+    except OSError as error:
+        data = f"not read: {error}".encode()
+    nb, cells, entries, problem = run_notebook(data, coding, {label: inputs[label] for label in coding}, limits,
+                                               Cache(out / "cache"), forced(submission, coding), cached_only)
+    record = {"student": submission.student, "chapter": submission.chapter, "path": str(submission.path),
+              "points": {}, "max": {}, "problem": {}, "right": {}, "lines": [],
+              "ungraded": any(e.get("ungraded") for e in entries.values()),
+              "cached": bool(entries) and all(e.get("cached") for e in entries.values())}
+    if problem:
+        record["lines"].append(f"✗ {problem}")
+    for label, meta in coding.items():
+        calls = [Call(tuple(c["args"]), c["what"]) for c in inputs[label]]
+        result = assess(label, meta, entries[label], calls, cells, limits)
+        for field in ("points", "max", "problem", "right"):
+            record[field][label] = result[field]
+        record["lines"] += result["lines"]
+    if nb is not None and not record["ungraded"]:
+        path = exports.feedback_path(out, submission.student, submission.chapter).with_suffix(".ipynb")
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(json.dumps(exports.executed_notebook(nb, entries), indent=1))
+    return record
 
 
-def grade(submissions, book, out, secret, jobs=None, timeout=180, memory=4 << 30, cell_timeout=60,
-          answer_timeout=checks.TIME_LIMIT):
-    """Grade ``submissions`` in parallel; write the CSV ``out`` and a feedback folder next to it."""
-    table = exercises(book)
-    labels = [label for chapter in table.values() for label in chapter]
-    out = pathlib.Path(out)
-    folder = out.with_name(out.stem + "-feedback")
-    folder.mkdir(parents=True, exist_ok=True)
+def grade(submissions, table, inputs, limits, out, jobs=None, only=(), students=(), cached_only=False):
+    """Grade ``submissions`` in parallel (``only`` exercises and ``students`` are graded afresh); their records."""
+    def forced(submission, coding):
+        return set(coding) if submission.student in students else set(only) & set(coding)
+
     with concurrent.futures.ThreadPoolExecutor(jobs or os.cpu_count()) as pool:
-        futures = {s: pool.submit(grade_one, s, table, secret, timeout, memory, cell_timeout, answer_timeout)
-                   for s in submissions}
-        graded = {s: f.result() for s, f in futures.items()}
-    used = [label for label in labels if any(label in points for points, _ in graded.values())]
-    with open(out, "w", newline="") as file:
-        writer = csv.writer(file)
-        writer.writerow(["submission", *used, "total"])
-        for submission, (points, feedback) in graded.items():
-            name = pathlib.Path(submission).name
-            writer.writerow([name, *(points.get(label, "") for label in used), sum(points.values())])
-            (folder / (pathlib.Path(submission).stem + ".txt")).write_text("\n".join([name, *feedback]) + "\n")
-    return graded
+        futures = [pool.submit(grade_one, s, table, inputs, limits, pathlib.Path(out), forced, cached_only)
+                   for s in submissions]
+        return [f.result() for f in futures]
+
+
+def _secret(args, parser):
+    if args.seed and args.seed_file:
+        parser.error("give --seed or --seed-file, not both")
+    if args.seed_file:
+        secret = pathlib.Path(args.seed_file).read_text().strip()
+        if not secret:
+            parser.error(f"--seed-file {args.seed_file} is empty")
+        return secret
+    if args.seed:
+        return args.seed
+    print("note: no --seed-file: the input is drawn from a random secret, so a later run cannot reuse these "
+          "results (regrades, shards and the merge need the same secret)", file=sys.stderr)
+    return secrets.token_hex(16)
+
+
+def parser():
+    p = argparse.ArgumentParser(prog="python -m instructor.grade", description=__doc__.split("\n\n")[0])
+    p.add_argument("submissions", nargs="*", help="folders of submissions (one folder per student), or notebooks")
+    p.add_argument("--out", default="grading", help="the folder to write into (default: grading)")
+    p.add_argument("--roster", help="CSV with columns id, name[, email, section, sis_login_id, canvas_id]")
+    p.add_argument("--seed-file", help="a file holding the secret the input is drawn from")
+    p.add_argument("--seed", help="the secret itself (visible to your other processes: prefer --seed-file)")
+    p.add_argument("--book", default=str(pathlib.Path(__file__).resolve().parents[1] / "book"),
+                   help="the instructor's notebooks: exercises and points (default: the book of this repository)")
+    p.add_argument("--only", action="append", default=[], metavar="LABEL", help="grade this exercise again")
+    p.add_argument("--student", action="append", default=[], metavar="ID", help="grade this student again")
+    p.add_argument("--shard", help="K/N: grade only the K-th of N equal parts of the class (then --merge)")
+    p.add_argument("--merge", action="store_true", help="run nothing: write the outputs from the shards' results")
+    p.add_argument("--merge-manual", metavar="CSV", help="scores of the written exercises (student_id, labels)")
+    p.add_argument("--deadline", help="ISO date and time, e.g. 2027-03-01T23:59+01:00")
+    p.add_argument("--submitted", metavar="CSV", help="when each student submitted (student_id, submitted[, chapter])")
+    p.add_argument("--late-penalty", type=float, default=10, help="percent of the points lost per day late (10)")
+    p.add_argument("--late-cutoff", type=float, help="days after which a late submission earns nothing")
+    p.add_argument("--jobs", type=int, help="submissions graded at once (default: one per core)")
+    p.add_argument("--timeout", type=float, default=LIMITS["timeout"], help="seconds for one submission (180)")
+    p.add_argument("--cell-timeout", type=float, default=LIMITS["cell_timeout"], help="seconds for one cell (30)")
+    p.add_argument("--answer-timeout", type=float, default=LIMITS["answer_timeout"],
+                   help=f"seconds for an answer on all its input ({checks.TIME_LIMIT:g}, as the checks)")
+    p.add_argument("--memory", type=int, default=LIMITS["memory"], help="megabytes for one submission (4096)")
+    p.add_argument("--gradescope-autograder", metavar="ZIP", help="write a Gradescope autograder instead of grading")
+    p.add_argument("--chapter", help="the chapter of the Gradescope autograder (its notebook's name)")
+    return p
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("submissions", nargs="*", help="completed notebooks of the student edition")
-    parser.add_argument("--out", default="grades.csv", help="the CSV to write (feedback goes next to it)")
-    parser.add_argument("--seed", help="a secret: the input of the checks is drawn from it (default: random)")
-    parser.add_argument("--book", default="book", help="the instructor's notebooks (exercises and points)")
-    parser.add_argument("--jobs", type=int, help="submissions graded at once (default: one per core)")
-    parser.add_argument("--timeout", type=int, default=180, help="seconds for one submission")
-    parser.add_argument("--memory", type=int, default=4096, help="megabytes for one submission")
-    parser.add_argument("--cell-timeout", type=int, default=60, help="seconds for one cell")
-    parser.add_argument("--answer-timeout", type=float, default=checks.TIME_LIMIT,
-                        help=f"seconds for each exercise's answer on its input (default {checks.TIME_LIMIT:g}, as the checks)")
-    parser.add_argument("--run-one", help=argparse.SUPPRESS)
-    parser.add_argument("--jobs-json", help=argparse.SUPPRESS)
-    args = parser.parse_args(argv)
-    if args.run_one:  # inside the sandbox
-        run_one(args.run_one, [tuple(job) for job in json.loads(args.jobs_json)], args.cell_timeout, args.answer_timeout)
+    p = parser()
+    args = p.parse_args(argv)
+    try:
+        table = exercises(args.book)
+    except (OSError, ValueError) as error:
+        p.error(f"--book {args.book}: {error}")
+    if not table:
+        p.error(f"--book {args.book}: no notebook there has exercises")
+    limits = {"timeout": args.timeout, "cell_timeout": args.cell_timeout, "answer_timeout": args.answer_timeout,
+              "memory": args.memory}
+    secret = _secret(args, p)
+    if args.gradescope_autograder:
+        from . import gradescope
+
+        chapter = gradescope.build(args.gradescope_autograder, table, args.chapter, secret, limits)
+        print(f"Gradescope autograder for {chapter}: {pathlib.Path(args.gradescope_autograder).resolve()}")
         return
     if not args.submissions:
-        parser.error("no submissions given")
-    if not _sandbox():
-        print("note: no sandbox on this machine (it needs Linux, root, unshare and setpriv): the "
-              "submissions run as you, with time and memory limits only", file=sys.stderr)
-    graded = grade(args.submissions, args.book, args.out, args.seed or secrets.token_hex(16), args.jobs,
-                   args.timeout, args.memory << 20, args.cell_timeout, args.answer_timeout)
-    print(f"graded {len(graded)} submissions: {args.out}, feedback in {pathlib.Path(args.out).stem}-feedback/")
+        p.error("no submissions given")
+    out = pathlib.Path(args.out)
+    if out.suffix == ".csv":
+        p.error(f"--out is the folder to write into (grades.csv goes inside it), not {args.out}")
+    try:
+        roster = rosters.read_roster(args.roster) if args.roster else None
+        submissions, problems = rosters.collect(args.submissions, table, roster)
+        policy = exports.late_policy(args.deadline, args.submitted, args.late_penalty, args.late_cutoff)
+        students = set(roster or ()) | {s.student for s in submissions}
+        manual = exports.read_manual(args.merge_manual, table, students) if args.merge_manual else {}
+    except (OSError, ValueError) as error:
+        p.error(str(error))
+    unknown = [label for label in args.only if not any(label in c["coding"] for c in table.values())]
+    if unknown:
+        p.error(f"--only {unknown[0]}: no coding exercise has this label")
+    if args.merge and (args.only or args.student):
+        p.error("--merge runs no notebook: --only and --student go with a run that grades")
+    strangers = [s for s in args.student if s not in {sub.student for sub in submissions}]
+    if strangers:
+        p.error(f"--student {strangers[0]}: no submission of this student")
+    graded_here = submissions
+    if args.shard:
+        match = re.fullmatch(r"(\d+)/(\d+)", args.shard)
+        if not match or not 1 <= int(match.group(1)) <= int(match.group(2)):
+            p.error(f"--shard {args.shard}: give K/N with 1 <= K <= N, for example 3/10")
+        k, n = int(match.group(1)), int(match.group(2))
+        graded_here = submissions[k - 1::n]
+    if not sandbox.available() and not args.merge:
+        print("note: no sandbox here (it needs Linux, root, unshare, mount and chroot, and namespaces): "
+              "each submission runs as you and can read what you can (see the README)", file=sys.stderr)
+    start = time.monotonic()
+    inputs = draw_inputs({c: table[c] for c in {s.chapter for s in graded_here}}, secret)
+    records = grade(graded_here, table, inputs, limits, out, args.jobs, set(args.only), set(args.student), args.merge)
+    seconds = time.monotonic() - start
+    ungraded = [r for r in records if r["ungraded"]]
+    if ungraded:
+        sys.exit("error: no shard graded " + ", ".join(f"{r['path']}" for r in ungraded[:20])
+                 + (" ..." if len(ungraded) > 20 else "") + ": run those shards again, or grade without --merge")
+    if args.shard:
+        print(f"shard {args.shard}: graded {len(records)} of {len(submissions)} submissions in {seconds:.0f} s; "
+              f"when every shard is done: python -m instructor.grade ... --merge --out {out}")
+        return
+    written = exports.write_all(records, table, roster, out, problems, policy, manual)
+    cached = sum(r["cached"] for r in records)
+    print(f"graded {len(records)} submissions ({cached} from earlier results) in {seconds:.0f} s")
+    for path in written:
+        print(f"  {path.resolve()}")
+    if problems:
+        print(f"{len(problems)} notebooks not graded (also in {(out / 'problems.txt').resolve()}):")
+        for problem in problems:
+            print(f"  {problem}")
 
 
 if __name__ == "__main__":

@@ -171,8 +171,7 @@ def _verdict(exercise, calls, raw):
         return f"on {calls[i].what} it raised {r['kind']}: {r['error']}"
     got = [np.asarray(r["value"], dtype=float) if _rectangular(r["value"]) else None for r in raw]
     want = [np.asarray(exercise.expected(call), dtype=float) for call in calls]
-    right = [g is not None and g.shape == w.shape and np.isfinite(g).all() and exercise.close(g, w, c)
-             for g, w, c in zip(got, want, calls, strict=True)]
+    right = [_right(exercise, g, w, c) for g, w, c in zip(got, want, calls, strict=True)]
     if all(right):
         return None
     first = right.index(False)
@@ -191,6 +190,22 @@ def _verdict(exercise, calls, raw):
     at = exercise.where(g, w, call)
     return (f"on {call.what}{_at(exercise, at)}: expected {short(w if at is None else w[at])}, "
             f"got {short(g if at is None else g[at])}")
+
+
+def right_inputs(exercise, calls, raw):
+    """For each input, whether the answer's result was right (for partial credit): all ``False``
+    when the whole run failed, and for any input it raised on or did not reach."""
+    if not isinstance(raw, list) or not runner.well_formed(raw):
+        return [False] * len(calls)
+    with np.errstate(all="ignore"):
+        return [i < len(raw) and "value" in raw[i] and _rectangular(raw[i]["value"])
+                and _right(exercise, np.asarray(raw[i]["value"], dtype=float),
+                           np.asarray(exercise.expected(call), dtype=float), call)
+                for i, call in enumerate(calls)]
+
+
+def _right(exercise, got, want, call):
+    return got is not None and got.shape == want.shape and bool(np.isfinite(got).all()) and exercise.close(got, want, call)
 
 
 def _rectangular(value):

@@ -121,6 +121,13 @@ def well_formed(results):
 
 def _seal(forbidden, measures):
     """In the answer's process: switch off what the answer must not use, and drop the checks."""
+    switch_off(forbidden, measures)
+    _drop_checks()
+
+
+def switch_off(forbidden, measures):
+    """Make the ``DiscreteCurve`` quantities ``forbidden`` and the callables ``measures`` raise
+    :class:`WriteItYourself` in this process (the grader does this before a submission's cells run)."""
     from ..curve import DiscreteCurve
 
     private = {"turning_angles": ("_tan_half_psi",), "curvature": ("_curvatures",)}
@@ -139,6 +146,10 @@ def _seal(forbidden, measures):
             for cls in vars(module).values():  # shapely.Polygon.buffer and the like
                 if isinstance(cls, type) and attribute in vars(cls):
                     setattr(cls, attribute, refuse)
+
+
+def _drop_checks():
+    """Empty the checks' modules, make them unimportable, and refuse any new import of ``ddg``."""
     for name in [m for m in sys.modules if m.startswith(SEALED) and m != __name__]:
         module = sys.modules[name]
         for value in list(vars(module).values()):  # the exercises' methods, wherever they are kept
