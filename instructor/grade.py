@@ -266,7 +266,7 @@ def assess(label, meta, entry, calls, cells, limits):
                     else f"✗ {answer}: {printable(problem)}")
     lines = [f"{label}: {earned:g}/{points:g}" + (f" ({sum(right)} of {len(calls)} inputs right)"
                                                     if meta.get("partial") and problem else ""), "  " + verdict_line]
-    wrong = collections.Counter(c.what for c, r in zip(calls, right) if not r)
+    wrong = collections.Counter(c.what for c, r in zip(calls, right, strict=True) if not r)
     if problem is not None and isinstance(raw, list) and wrong:
         lines.append(f"  wrong on {sum(wrong.values())} of {len(calls)} inputs: " + "; ".join(
             what + (f" (x{count})" if count > 1 else "") for what, count in wrong.items()))

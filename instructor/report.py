@@ -43,7 +43,7 @@ def _figure(chapters, table, records, rows):
     lines = -(-(len(panels) + 1) // columns)
     fig, axes = plt.subplots(lines, columns, figsize=(3.2 * columns, 2.4 * lines), layout="constrained", squeeze=False)
     axes = axes.ravel()
-    for ax, (label, points, top) in zip(axes, panels):
+    for ax, (label, points, top) in zip(axes, panels, strict=False):  # axes has spare panels
         counts = collections.Counter(points)
         values = sorted(set(points) | ({0, top} if top is not None else set()))
         ax.bar([f"{v:g}" for v in values], [counts[v] for v in values], color="#3b6ea5")
@@ -63,7 +63,7 @@ def _figure(chapters, table, records, rows):
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png", dpi=110)
     plt.close(fig)
-    alt = "; ".join(f"{label}: {100 * p:.0f}% passed" for label, p in zip(labels, passing))
+    alt = "; ".join(f"{label}: {100 * p:.0f}% passed" for label, p in zip(labels, passing, strict=True))
     return base64.b64encode(buffer.getvalue()).decode(), alt
 
 

@@ -43,7 +43,7 @@ def test_student_answers_are_never_deleted(tmp_path):
 
     # FRESH=1, and after a change to ddg/ a plain rebuild, drop the cache: the first notebook runs
     # (the rebuild is stopped there; the book's journey in test_rebuild.py sees one to the end)
-    checks, state = copy / "ddg" / "checks.py", copy / "_build" / "student" / "_build"
+    checks, state = copy / "ddg" / "curve.py", copy / "_build" / "student" / "_build"
     saved = shutil.copytree(state, tmp_path / "saved")  # the cache and its record, as the build left them
     for command, change in ((["make", "student", "FRESH=1"], None), (["make", "student"], "# changed by the instructor\n")):
         shutil.rmtree(state, ignore_errors=True)
