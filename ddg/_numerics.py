@@ -109,12 +109,13 @@ def tan_half_turn(a, b):
     each avoids cancellation in its half, so the result is accurate even for a turn a rounding error
     away from ``pi``, where ``psi`` itself cannot tell ``pi - 1e-17`` from ``pi``. Where the edges
     point in exactly opposite directions the result is ``+inf`` (``psi = pi``). Both forms are
-    homogeneous in ``a`` and ``b``, so the rows are first made unit vectors where their lengths
-    leave :data:`SAFE` (products of lengths could under- or overflow).
+    homogeneous in ``a`` and in ``b``, so each row is first scaled by a power of two to a length in
+    ``[1/2, 1)``: exactly, so the result is the same at every scale, and no product under- or
+    overflows, however small the turn's sine.
     """
     la, lb = lengths(a), lengths(b)
-    if not (len(la) and SAFE[0] < min(la.min(), lb.min()) and max(la.max(), lb.max()) < SAFE[1]):
-        a, b, la, lb = a / la[:, None], b / lb[:, None], np.ones_like(la), np.ones_like(lb)
+    ea, eb = np.frexp(la)[1], np.frexp(lb)[1]
+    a, b, la, lb = np.ldexp(a, -ea[:, None]), np.ldexp(b, -eb[:, None]), np.ldexp(la, -ea), np.ldexp(lb, -eb)
     dot = a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1]
     minus_cross = a[:, 1] * b[:, 0] - a[:, 0] * b[:, 1]
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):

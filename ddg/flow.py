@@ -308,6 +308,8 @@ def flow(curve, kind="sine", t_end=1.0, *, method="explicit", dt=None, safety=0.
         raise ValueError(_reversal(curve))
     frame = _Frame(curve)
     start = frame.local(curve)
+    if len(start._reversals):  # a turn a rounding error short of pi, rounded onto it by the move
+        raise ValueError(_reversal(start))
     end = frame.local_time(float(t_end))
     lifetime = remaining_lifetime(start, kind)
     degenerate = not 0 < lifetime < np.inf  # at the curve's own scale: a collapsed curve
