@@ -43,7 +43,16 @@ document.addEventListener("DOMContentLoaded", function () {
     wideInline();
     var boxes = Array.prototype.slice.call(document.querySelectorAll(".ddg-scroll, main div.math mjx-container, main pre"));
     var overflows = boxes.map(function (box) { return box.scrollWidth > box.clientWidth + 1; });  // all read, then all set:
-    boxes.forEach(function (box, i) { box.classList.toggle("ddg-overflows", overflows[i]); });  // one layout, not one each
+    boxes.forEach(function (box, i) {  // one layout, not one each
+      box.classList.toggle("ddg-overflows", overflows[i]);
+      if (overflows[i] && !box.hasAttribute("tabindex")) {  // a box that scrolls takes the keyboard's focus
+        box.tabIndex = 0;
+        box.dataset.ddgFocus = "";
+      } else if (!overflows[i] && box.hasAttribute("data-ddg-focus")) {
+        box.removeAttribute("tabindex");
+        box.removeAttribute("data-ddg-focus");
+      }
+    });
   }
   cue();
   window.addEventListener("resize", cue);

@@ -139,8 +139,10 @@ def test_chapter_renders_like_the_book_and_runs_in_jupyterlab(lab, browser):
         assert errors.count() == 0, errors.all_inner_texts()[:3]
         assert page.locator(".jp-RenderedImage img").count() >= 2  # the chapter's figures
         checks = page.locator(".jp-OutputArea-output", has_text="passed")
-        assert checks.count() >= 2  # the checks ran, inside the folded solutions: their output folded too
-        assert not any(check.is_visible() for check in checks.all()), "a folded solution shows its output"
+        assert checks.count() >= 2  # the checks ran, inside the folded solutions
+        # JupyterLab shows a cell's output once it runs (CodeCell.execute sets outputHidden = false):
+        # the verdicts show, the solutions' code stays folded
+        assert not page.get_by_text("farther = np.linalg.norm").first.is_visible()
         page.screenshot(path=str(ROOT / "_build" / "lab-journey.png"))
     finally:
         context.close()
