@@ -355,8 +355,12 @@ class DiscreteCurve:
             return self.signed_area
         if method == "minkowski":
             corners = 0.5 * float(self.turning_angles.sum())
-        else:
-            corners = 0.5 * self.total_curvature("tangent")
+        else:  # sum_i tan(psi_i/2), not via k^tangent, which overflows first on a tiny near-reversal
+            if len(self._reversals):
+                raise ValueError(f"no offset corner at vertex {self._vertex_index(self._reversals[0])}: the curve "
+                                 "turns straight back there (psi = pi), so eps^2 tan(psi/2) is infinite")
+            with np.errstate(over="ignore", invalid="ignore"):
+                corners = float(np.sum(self._tan_half_psi))
         with np.errstate(over="ignore", invalid="ignore"):
             area = self.signed_area + eps * self.length + eps * eps * corners
         if not np.isfinite(area):

@@ -616,6 +616,8 @@ def test_hostile_polygons_have_exact_areas(polygon):
                     [1.225259122546927e-16, 2.001]]), 484), 2.0, "offset")  # eps^2 sum tan(psi/2) overflows
 @example((np.array([[0.0, 0.0], [1.0, 0.0], [0.99, 1.8988215193149856e-17], [1.99, 1.8988215193149856e-17]]),
           0), 1.0, "offset")  # four near-reversals: the corners coincide in pairs
+@example((np.array([[0.0, 0.0], [1.0, 0.0], [2.0, -1.48087882e-170], [3.0, -2.96175764e-170]]), -458), 1.0,
+         "offset")  # tan(psi/2) / A_i overflows, eps^2 tan(psi/2) does not
 def test_hostile_polygons_inflate_to_their_formula(polygon, relative_eps, method):
     v, k = polygon
     c = curve_or_equal_vertices(np.ldexp(v, k))
