@@ -72,9 +72,9 @@ def in_root(root, command, env=(), binds=()):
                           text=True, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=1200)
 
 
-def grade(*arguments, check=True, timeout=900):
+def grade(*arguments, check=True, timeout=900, env=None):
     """``python -m instructor.grade ARGUMENTS``, as an instructor runs it."""
-    return run([sys.executable, "-m", "instructor.grade", *map(str, arguments)], timeout=timeout, check=check)
+    return run([sys.executable, "-m", "instructor.grade", *map(str, arguments)], timeout=timeout, check=check, env=env)
 
 
 def rows(path):

@@ -4,11 +4,13 @@ Every submission is a real notebook (the student edition of chapter 3, completed
 real sandbox (these journeys need Linux and root). Each test is one thing an instructor relies on:
 students told apart and nothing guessed; a submission that hunts for the secret and the solutions
 and finds nothing; feedback that says what happened for every way a notebook can fail; partial
-credit, written exercises, regrades and deadlines; shards merged into one class, and its report.
+credit, written exercises, regrades and deadlines; shards merged into one class, and its report;
+a right notebook graded under random secrets with the grader's numerics unlike the kernel's.
 """
 
 import hashlib
 import json
+import secrets
 import shutil
 import subprocess
 import sys
@@ -19,6 +21,7 @@ from grading_helpers import CHAPTER, HUNT, by_student, grade, needs_root, refere
 from journey_helpers import ROOT
 
 NOTEBOOK = f"{CHAPTER}.ipynb"
+SECRETS = 8  # random secrets a right notebook is graded under
 
 
 def feedback(out, student):
@@ -273,3 +276,17 @@ def test_shards_graded_apart_merge_into_one_class_with_its_report(tmp_path):
     assert "<td>ex-rebuild</td><td>1</td><td>0.75</td><td>3 of 4 (75%)</td>" in report
     assert "the turns go the wrong way" in report and "ex-turning-three (written)" in report
     assert "--shard 3/2: give K/N" in grade(subs, "--seed", "s", "--out", final, "--shard", "3/2", check=False).stdout
+
+
+def test_a_right_answer_gets_full_points_under_any_secret_and_any_numerics(tmp_path):
+    """The input is drawn once, in the grader, and only its specs reach the kernel: a right notebook
+    gets every point under random secrets, though the grader's numpy runs with another BLAS core type
+    than the sandboxed kernel's (which keeps none of the grader's environment)."""
+    needs_root()
+    subs = tmp_path / "submissions"
+    submission(subs / "alice" / NOTEBOOK)
+    for k in range(SECRETS):
+        out = tmp_path / f"grading{k}"
+        grade(subs, "--seed", secrets.token_hex(8), "--out", out, env={"OPENBLAS_CORETYPE": "Prescott"})
+        table = rows(out / "grades.csv")
+        assert table[1][0] == "alice" and table[1][-1] == "2", table
