@@ -14,6 +14,8 @@ the vertices, but both compute it from the same bits by the same operations, so 
 last bit; see ddg/_numerics.py tan_half_turn.)
 """
 
+import os
+import pathlib
 import re
 
 import numpy as np
@@ -23,7 +25,7 @@ from browser_helpers import PROBES, ROOT
 import ddg
 from ddg.flow import flow
 
-LAB = ROOT / "book" / "_assets" / "ddg-lab.js"
+LAB = pathlib.Path(os.environ.get("DDG_LAB_JS", ROOT / "book" / "_assets" / "ddg-lab.js"))  # another copy: mutation tests
 TOLERANCE = 1e-12
 SCALARS = ("length", "signed_area")
 ROWS = ("edges", "tangents", "normals", "length_gradient", "bisector_normals")
