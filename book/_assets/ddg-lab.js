@@ -30,16 +30,19 @@
     var biased = (bits.getUint32(0) >>> 20) & 0x7ff;
     return biased ? biased - 1022 : exponent(x * pow2(64)) - 64;
   }
-  function sum(values) {  // the sum, compensated (Neumaier): at least as accurate as numpy's
+  function sum(values) {  // np.sum, in its order: numpy's pairwise summation (8 accumulators, blocks of 128)
+    var n = values.length, i, h, r, res = 0;
+    if (n < 8) { for (i = 0; i < n; i++) res += values[i]; return res; }
+    if (n > 128) { h = n >> 1; h -= h % 8; return sum(values.slice(0, h)) + sum(values.slice(h)); }
+    for (r = values.slice(0, 8), i = 8; i < n - n % 8; i += 8) for (h = 0; h < 8; h++) r[h] += values[i + h];
+    for (res = ((r[0] + r[1]) + (r[2] + r[3])) + ((r[4] + r[5]) + (r[6] + r[7])); i < n; i++) res += values[i];
+    return res;
+  }
+  function dot(a, b) {  // numpy's a @ b is BLAS's, in an order of its own: here compensated (Neumaier), as accurate
     var s = 0, c = 0;
-    values.forEach(function (x) {
-      var t = s + x;
-      c += Math.abs(s) >= Math.abs(x) ? (s - t) + x : (x - t) + s;
-      s = t;
-    });
+    a.forEach(function (x, i) { var y = x * b[i], t = s + y; c += Math.abs(s) >= Math.abs(y) ? (s - t) + y : (y - t) + s; s = t; });
     return s + c;
   }
-  function dot(a, b) { return sum(a.map(function (x, i) { return x * b[i]; })); }
   function previous(values) { return values.slice(-1).concat(values.slice(0, -1)); }  // entry i: values[i - 1]
   function J(u) { return u.map(function (p) { return [-p[1], p[0]]; }); }  // +90 degrees
 
@@ -177,7 +180,7 @@
   getter("bisector_normals", function () {  // N_i: N_{i-1/2} turned clockwise by psi_i / 2, the direction of grad L
     var Np = previous(this.normals), Tp = previous(this.tangents);
     return this.tan_half_psi.map(function (t, i) {
-      var cos = 1 / Math.hypot(1, t), sin = Math.sign(t) / Math.hypot(1, 1 / t);
+      var cos = 1 / hypot(1, t), sin = Math.sign(t) / hypot(1, 1 / t);
       return [cos * Np[i][0] + sin * Tp[i][0], cos * Np[i][1] + sin * Tp[i][1]];
     });
   });
