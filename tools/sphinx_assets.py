@@ -4,9 +4,10 @@ first paint holds that paint up.
 The theme and the extensions put each of their files on every page. Here:
 
 - A file of an extension loads only on the pages with what it serves (USES): the explorers'
-  player where there is an explorer, the toggle buttons where something folds, the copy buttons
-  where there is code, sphinx-design's and thebe's nowhere (no tabs or cards, no live code).
-  Scripts that wait for the page to be parsed anyway are deferred (DEFER).
+  player where there is an explorer, the lab's two scripts where there is the lab, the toggle
+  buttons where something folds, the copy buttons where there is code, sphinx-design's and
+  thebe's nowhere (no tabs or cards, no live code). Scripts that wait for the page to be parsed
+  anyway are deferred (DEFER).
 - The theme's icons (about twenty, of Font Awesome) are written into the pages as inline SVG,
   taken from the theme's own copy of Font Awesome. Its script (1.5 MB, which drew them in the
   reader's browser) and the icon rules of the theme's stylesheet (a third of it) go; its fonts,
@@ -36,7 +37,9 @@ logger = logging.getLogger(__name__)
 
 # What a page's body must contain for a file to load there; None: no page.
 FOLDS, CODE = re.compile(r'class="[^"]*\b(toggle|dropdown)\b'), re.compile(r'<div class="highlight')
-USES = {"ddg-player.js": re.compile(r'class="ddg-explorer"'), "togglebutton.js": FOLDS, "togglebutton.css": FOLDS,
+LAB = re.compile(r'class="ddg-lab"')  # the lab of chapter 10: ddg's formulas in JavaScript, and the page's lab
+USES = {"ddg-player.js": re.compile(r'class="ddg-explorer"'), "ddg-lab.js": LAB, "ddg-lab-page.js": LAB,
+        "togglebutton.js": FOLDS, "togglebutton.css": FOLDS,
         "clipboard.min.js": CODE, "copybutton.js": CODE, "copybutton.css": CODE, "design-tabs.js": None,
         "sphinx-design.min.css": None, "sphinx-thebe.js": None, "sphinx-thebe.css": None}
 THEBE_SETTINGS = "THEBE_JS_URL"  # thebe's inline settings go with its script

@@ -186,3 +186,20 @@ async () => {
     });
     return differ;
 }
+
+//# LAB_QUANTITIES
+(polygons) => polygons.map(({vertices, eps}) => {  // ddg-lab.js on each polygon: every quantity, or its error
+    const lab = window.ddgLab, out = {};
+    const get = (name, f) => { try { out[name] = f(); } catch (e) { out[name] = {error: e.message}; } };
+    let c = null;
+    get("curve", () => { c = new lab.DiscreteCurve(vertices); return null; });
+    for (const kind of lab.CURVATURES) get("flow_step " + kind, () => lab.flow_step(vertices, kind));
+    if (!c) return out;
+    for (const name of ["edges", "edge_lengths", "length", "tangents", "normals", "turning_angles", "dual_lengths",
+                        "turning_number", "signed_area", "bisector_normals"]) get(name, () => c[name]);
+    get("tan_half_turn", () => lab.tan_half_turn(c.edges.slice(-1).concat(c.edges.slice(0, -1)), c.edges));
+    get("length_gradient", () => c.length_gradient());
+    for (const kind of lab.CURVATURES) get("curvature " + kind, () => c.curvature(kind));
+    for (const method of lab.INFLATIONS) [0, eps].forEach((e, i) => get(`inflated_area ${method} ${i}`, () => c.inflated_area(e, method)));
+    return out;
+})
