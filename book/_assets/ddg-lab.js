@@ -210,9 +210,10 @@
     if (eps < 0) fail("eps must be >= 0, got " + eps + ": erosion is not supported (the lecture's formulas hold only until an edge collapses); inflating the reversed curve moves the edges the other way");
     if (eps > 0 && this.signed_area < 0) fail("the curve is counter-clockwise (its signed area is negative): its normals point inward, so inflating it would erode it, which the formulas describe only until an edge collapses; reverse it (vertices[::-1]) to inflate it outward");
     if (eps === 0) return this.signed_area;
+    if (method === "offset" && this.reversals.length) fail("no offset corner at vertex " + this.reversals[0] + ": the curve turns straight back there (psi = pi), so eps^2 tan(psi/2) is infinite");
     var corners = method === "minkowski"
       ? 0.5 * sum(this.turning_angles)               // A_0 + eps L + eps^2 / 2 sum_i psi_i (disk sectors)
-      : 0.5 * this.total_curvature("tangent");       // A_0 + eps L + eps^2 sum_i tan(psi_i / 2) (kites)
+      : sum(this.tan_half_psi);                      // A_0 + eps L + eps^2 sum_i tan(psi_i / 2) (kites)
     var area = this.signed_area + eps * this.length + eps * eps * corners;
     if (!isFinite(area)) fail("the inflated area is larger than the largest float (about 1.8e308); scale the curve or eps down");
     return area;

@@ -81,6 +81,7 @@ SCRIPTS = {
     "clipboard.min.js": "div.highlight pre", "copybutton.js": "div.highlight pre",  # a copy button on code
     "togglebutton.js": ".toggle, .admonition.dropdown",  # what folds: solutions
     "ddg-player.js": ".ddg-explorer", "ddg-states": ".ddg-explorer",  # explorers and animations, and their states
+    "ddg-lab.js": ".ddg-lab", "ddg-lab-page.js": ".ddg-lab",  # the lab of chapter 10: ddg's formulas in JavaScript
     "searchtools.js": "#search-results", "language_data.js": "#search-results", "searchindex.js": "#search-results",
 }
 BUDGET = 700_000  # bytes a page may transfer, compressed as a static host compresses text (gzip)
