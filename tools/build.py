@@ -112,7 +112,7 @@ def student(fresh=False, force=False, student_repo=None):
         shutil.move(kept, cache)
     if not finished:
         sys.exit(1)
-    stamp(out / "_build", inputs=now)
+    stamp(out / "_build", inputs=now, assets=assets())
     print("ddg/, the pins and _config.yml unchanged: only notebooks whose code changed run again"
           if cache.is_dir() else "every notebook of the student edition runs", flush=True)
     run(JB, "build", out, "-W", "-n", "--keep-going")
@@ -122,10 +122,11 @@ def student(fresh=False, force=False, student_repo=None):
 
 
 def student_is_current():
-    """Whether the student site was built from the book as it is: the same inputs, and no chapter,
-    page or configuration changed since."""
+    """Whether the student site was built from the book as it is: the same inputs and page assets
+    (book/_assets, the Sphinx extensions), and no chapter, page or configuration changed since."""
     site = BUILD / "student" / "html" / "index.html"
-    if not site.exists() or stamped(BUILD / "student" / "_build", "inputs") != inputs():
+    stamps = BUILD / "student" / "_build"
+    if not site.exists() or stamped(stamps, "inputs") != inputs() or stamped(stamps, "assets") != assets():
         return False
     sources = [*(ROOT / "book").iterdir(), ROOT / "_toc.yml", ROOT / "_config.yml"]
     return all(path.stat().st_mtime <= site.stat().st_mtime for path in sources if path.is_file())

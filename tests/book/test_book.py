@@ -154,15 +154,20 @@ def test_the_pdf_step_knows_a_stale_student_edition(tmp_path, monkeypatch):
     from tools import build
 
     root = tmp_path / "repo"
-    for name in ("book", "ddg", "_build/student/html", "_build/student/_build"):
+    for name in ("book/_assets", "ddg", "tools", "_build/student/html", "_build/student/_build"):
         (root / name).mkdir(parents=True)
-    for name in ("requirements.txt", "pyproject.toml", "_config.yml", "_toc.yml", "book/01.ipynb", "ddg/x.py"):
+    for name in ("requirements.txt", "pyproject.toml", "_config.yml", "_toc.yml", "book/01.ipynb", "ddg/x.py",
+                 "book/_assets/lab.js", "tools/vendor.py"):
         (root / name).write_text("x")
     monkeypatch.setattr(build, "ROOT", root)
     monkeypatch.setattr(build, "BUILD", root / "_build")
     site = root / "_build/student/html/index.html"
     site.write_text("<html>")
-    build.stamp(root / "_build/student/_build", inputs=build.inputs())
+    build.stamp(root / "_build/student/_build", inputs=build.inputs(), assets=build.assets())
+    assert build.student_is_current()
+    (root / "book/_assets/lab.js").write_text("y")  # a script of the pages changed: they are written again
+    assert not build.student_is_current()
+    build.stamp(root / "_build/student/_build", assets=build.assets())
     assert build.student_is_current()
     chapter = root / "book/01.ipynb"
     os.utime(chapter, (site.stat().st_mtime + 5,) * 2)  # the instructor edits a chapter afterwards

@@ -1,6 +1,7 @@
 """The lab's JavaScript (book/_assets/ddg-lab.js) against ddg, on random polygons, in Chromium.
 
-Every quantity the lab computes, on polygons drawn in Python with a seeded rng: convex and not,
+Every quantity the lab computes (but total_curvature, a dot product of two compared arrays whose
+summation order BLAS chooses: where it cancels to about 0 no relative bound holds), on polygons drawn in Python with a seeded rng: convex and not,
 near reversals (a turn within 1e-6 of +pi or -pi) and exact ones, very unequal edges, scales of
 1e-150 and 1e150, far from the origin, figure-eights (whose area ddg sums exactly), regular
 2000-gons, and what ddg refuses (too few vertices, two consecutive equal vertices, a NaN). Each

@@ -143,6 +143,7 @@ def test_chapter_renders_like_the_book_and_runs_in_jupyterlab(lab, browser):
         # JupyterLab shows a cell's output once it runs (CodeCell.execute sets outputHidden = false):
         # the verdicts show, the solutions' code stays folded
         assert not page.get_by_text("farther = np.linalg.norm").first.is_visible()
+        assert page.locator(".jp-InputPlaceholder", has_text="def staircase").count() == 1
         page.screenshot(path=str(ROOT / "_build" / "lab-journey.png"))
     finally:
         context.close()
