@@ -188,7 +188,7 @@ async () => {
 }
 
 //# LAB_QUANTITIES
-(polygons) => polygons.map(({vertices, eps}) => {  // ddg-lab.js on each polygon: every quantity, or its error
+(polygons) => JSON.stringify(JSON.parse(polygons, (key, x) => ["NaN", "Infinity", "-Infinity"].includes(x) ? Number(x) : x).map(({vertices, eps}) => {  // ddg-lab.js on each polygon: every quantity, or its error
     const lab = window.ddgLab, out = {};
     const get = (name, f) => { try { out[name] = f(); } catch (e) { out[name] = {error: e.message}; } };
     let c = null;
@@ -202,4 +202,6 @@ async () => {
     for (const kind of lab.CURVATURES) get("curvature " + kind, () => c.curvature(kind));
     for (const method of lab.INFLATIONS) [0, eps].forEach((e, i) => get(`inflated_area ${method} ${i}`, () => c.inflated_area(e, method)));
     return out;
-})
+}), (key, x) => typeof x === "number" && !isFinite(x) ? `@${x}@` : x).replace(/"@(NaN|-?Infinity)@"/g, "$1")
+// JSON text both ways, NaN and infinities written as Python's json reads them: Playwright's own
+// transfer of so many numbers takes seconds

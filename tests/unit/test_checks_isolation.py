@@ -170,8 +170,8 @@ def test_a_fork_loop_is_bounded_and_stopped(namespace, monkeypatch):
     folder = pathlib.Path(os.environ.get("TMPDIR", "/tmp")) / f"ddg-check-forks-{os.getpid()}"
     folder.mkdir(exist_ok=True)
 
-    def forks(vertices):  # 300 processes that would sleep for a minute
-        for _ in range(300):
+    def forks(vertices):  # 100 processes (more than PROCESS_LIMIT) that would sleep for a minute
+        for _ in range(100):
             try:
                 if os.fork() == 0:
                     (folder / str(host_pid())).touch()
