@@ -1,14 +1,51 @@
-/* The lab on the page (book/10_explorers): a polygon whose vertices the reader drags, or moves with
- * the arrow keys, coloured by a discrete curvature, with its turning number, length and signed area,
- * computed by ddg-lab.js (ddg's formulas) as it changes. Loaded only where there is a .ddg-lab
- * (tools/sphinx_assets.py). Data coordinates have y up; the SVG is drawn with y flipped.
+/* The lab on the page (book/10_explorers): a polygon the reader shapes (presets, drawing, dragging,
+ * arrow keys, adding and removing vertices, undo), coloured by a discrete curvature, with the
+ * gradient of length as arrows, the curvature along the polygon beside the smooth curve's, and the
+ * three curve-shortening flows run side by side from it. Everything is computed by ddg-lab.js
+ * (ddg's formulas). Loaded only where there is a .ddg-lab (tools/sphinx_assets.py). Data
+ * coordinates have y up; the SVG is drawn with y flipped. The address can choose the start:
+ * ?lab=star&kind=tangent&n=24&arrows=1 (the chapters link to the lab so).
  */
 (function () {
   "use strict";
   var SVG = "http://www.w3.org/2000/svg", RAMP = ["#2563eb", "#9ca3af", "#dc2626"];  // ddg.scene.RAMP
-  var SHAPES = {"regular n-gon": function () { return 1; },
-                "non-convex blob": function (t) { return 1 + 0.3 * Math.cos(3 * t); }};  // ddg.explore.SHAPES
+  var FLOW_COLORS = {angle: "#3b82f6", sine: "#f59e0b", tangent: "#10b981"};       // ddg.explore.FLOW_COLORS
+  function polar(r, dr, ddr) {  // ddg.smooth.polar, clockwise: r(t) (cos t, -sin t) and its derivatives
+    return function (t) {
+      var c = Math.cos(t), s = Math.sin(t), a = r(t), b = dr(t), d = ddr(t);
+      return [[a * c, -a * s], [b * c - a * s, -(b * s + a * c)], [d * c - 2 * b * s - a * c, -(d * s + 2 * b * c - a * s)]];
+    };
+  }
+  /* Smooth closed curves (gamma, gamma', gamma'' at t), sampled at t_k = 2 pi (k + shift) / n: the
+   * circle, ellipse and blob of ddg.explore.SHAPES, and a figure-eight (turning number 0). */
+  var SMOOTH = {
+    "regular n-gon": {shift: 0, at: polar(function () { return 1; }, function () { return 0; }, function () { return 0; })},
+    "ellipse": {shift: 0, at: function (t) {
+      var c = Math.cos(t), s = Math.sin(t);
+      return [[2 * c, -s], [-2 * s, -c], [-2 * c, s]];
+    }},
+    "non-convex blob": {shift: 0, at: polar(function (t) { return 1 + 0.3 * Math.cos(3 * t); },
+                                            function (t) { return -0.9 * Math.sin(3 * t); },
+                                            function (t) { return -2.7 * Math.cos(3 * t); })},
+    "figure-eight": {shift: 0.5, at: function (t) {  // 1.2 (sin t, sin t cos t): its crossing between two vertices
+      var c = Math.cos(t), s = Math.sin(t);
+      return [[1.2 * s, 0.6 * Math.sin(2 * t)], [1.2 * c, 1.2 * Math.cos(2 * t)], [-1.2 * s, -2.4 * Math.sin(2 * t)]];
+    }}
+  };
+  var POLYGONS = {  // ddg.explore.POLYGONS: chapter 5's polygons
+    "star (chapter 5)": [0, 1, 2, 3, 4, 5, 6, 7, 8, 9].map(function (k) {
+      var r = k % 2 ? 0.5 : 1, a = k * Math.PI / 5;
+      return [r * Math.cos(a), -r * Math.sin(a)];
+    }),
+    "convex pentagon (chapter 5)": [[0, 0], [0.3, 1.5], [1.8, 2], [3, 1], [2.4, -0.4]]
+  };
+  var SHORT_NAMES = {regular: "regular n-gon", ellipse: "ellipse", blob: "non-convex blob", eight: "figure-eight",
+                     star: "star (chapter 5)", pentagon: "convex pentagon (chapter 5)"};  // for ?lab=
 
+  function kappa(t, at) {  // ddg.smooth.SmoothCurve.curvature: -(gamma' x gamma'') / |gamma'|^3, clockwise positive
+    var p = at(t), d = p[1], dd = p[2], speed = Math.hypot(d[0], d[1]);
+    return -(((d[0] / speed) * dd[1] - (d[1] / speed) * dd[0]) / speed) / speed;
+  }
   function ramp(value) {  // ddg.scene.ramp on RAMP
     value = Math.min(Math.max(value, 0), 1);
     var i = value <= 0.5 ? 0 : 1, t = value * 2 - i;
@@ -19,7 +56,8 @@
   }
   function short(x) { return String(Number(x.toPrecision(6))); }  // six significant digits, as the summary shows them
   function element(name, attributes, parent) {
-    var e = document.createElementNS(name === "svg" || name === "path" || name === "circle" || name === "g" ? SVG : "http://www.w3.org/1999/xhtml", name);
+    var svg = ["svg", "path", "circle", "g", "polyline", "line"].indexOf(name) >= 0;
+    var e = document.createElementNS(svg ? SVG : "http://www.w3.org/1999/xhtml", name);
     Object.keys(attributes).forEach(function (a) { e.setAttribute(a, attributes[a]); });
     if (parent) parent.appendChild(e);
     return e;
@@ -30,43 +68,98 @@
     label.appendChild(input);
     return input;
   }
+  function button(root, text, title) {
+    var b = element("button", {type: "button", class: "ddg-play", title: title || text}, root);
+    b.textContent = text;
+    return b;
+  }
+  function bounds(points) {
+    var xs = points.map(function (p) { return p[0]; }), ys = points.map(function (p) { return p[1]; });
+    return [Math.min.apply(null, xs), Math.min.apply(null, ys), Math.max.apply(null, xs), Math.max.apply(null, ys)];
+  }
+  function frame(svg, points) {  // a square view of the points with a margin; y flipped
+    var b = bounds(points), size = Math.max(b[2] - b[0], b[3] - b[1], 1e-9) * 1.3, cx = (b[0] + b[2]) / 2, cy = (b[1] + b[3]) / 2;
+    svg.setAttribute("viewBox", [cx - size / 2, -cy - size / 2, size, size].join(" "));
+    return size;
+  }
+  function pathOf(points, closed) {
+    return points.length ? "M" + points.map(function (p) { return p[0] + "," + -p[1]; }).join("L") + (closed ? "Z" : "") : "";
+  }
+  function plot(svg, series, x0, x1, y0, y1) {  // polylines in a 360 x 120 chart: [[x, y] ...], styles
+    var w = 360, h = 120, sx = w / (x1 - x0 || 1), sy = (h - 8) / (y1 - y0 || 1);
+    svg.textContent = "";
+    element("line", {x1: 0, x2: w, y1: h - 4 + y0 * sy, y2: h - 4 + y0 * sy, stroke: "currentColor", "stroke-opacity": 0.3}, svg);
+    series.forEach(function (s) {
+      element("polyline", {fill: "none", stroke: s.color, "stroke-width": 1.5, "stroke-dasharray": s.dashed ? "5 3" : "none",
+                           points: s.points.map(function (p) { return ((p[0] - x0) * sx).toFixed(2) + "," + (h - 4 - (p[1] - y0) * sy).toFixed(2); }).join(" ")}, svg);
+    });
+  }
 
   function Lab(root) {
-    var self = this, controls = element("div", {class: "ddg-controls"}, root);
+    var self = this, controls = element("div", {class: "ddg-controls"}, root), edits = element("div", {class: "ddg-controls"}, root);
+    var query = new URLSearchParams(window.location.search), lab = window.ddgLab;
     root.querySelectorAll(".ddg-lab-static").forEach(function (e) { e.hidden = true; });
     this.shape = control(controls, "shape", element("select", {}, null));
-    Object.keys(SHAPES).forEach(function (s) { element("option", {value: s}, self.shape).textContent = s; });
-    this.n = control(controls, "n", element("input", {type: "number", min: 3, max: 2000, step: 1, value: root.dataset.n || 12}));
+    Object.keys(SMOOTH).concat(Object.keys(POLYGONS)).forEach(function (s) { element("option", {value: s}, self.shape).textContent = s; });
+    this.n = control(controls, "n", element("input", {type: "number", min: 3, max: 2000, step: 1, value: query.get("n") || root.dataset.n || 12}));
     this.kind = control(controls, "curvature", element("select", {}, null));
-    window.ddgLab.CURVATURES.forEach(function (k) { element("option", {value: k}, self.kind).textContent = k; });
-    var reset = element("button", {type: "button", class: "ddg-play"}, controls);
-    reset.textContent = "Reset";
-    this.svg = element("svg", {class: "ddg-panel ddg-lab-svg", viewBox: "-1.5 -1.5 3 3", width: 360, height: 360, role: "group",
-                               "aria-label": "the polygon: each vertex is a button; arrow keys move it, Page Up and Page Down go to the previous and next vertex"}, root);
+    lab.CURVATURES.forEach(function (k) { element("option", {value: k}, self.kind).textContent = k; });
+    this.arrows = control(controls, "arrows of ∇L", element("input", {type: "checkbox"}, null));
+    this.shape.value = SHORT_NAMES[query.get("lab")] || this.shape.value;
+    if (lab.CURVATURES.indexOf(query.get("kind")) >= 0) this.kind.value = query.get("kind");
+    this.arrows.checked = query.get("arrows") === "1";
+    var reset = button(controls, "Reset", "the preset again");
+    this.draw = button(edits, "Draw", "click or tap in the plane to place vertices, clockwise; press again to finish");
+    this.draw.setAttribute("aria-pressed", "false");
+    var add = button(edits, "Add vertex", "a vertex in the middle of the edge after the selected vertex (key: Insert or +)");
+    var remove = button(edits, "Remove vertex", "remove the selected vertex (key: Delete or -)");
+    var undo = button(edits, "Undo", "undo the last change (key: Ctrl+Z)");
+    this.svg = element("svg", {class: "ddg-panel ddg-lab-svg", width: 360, height: 360, role: "group",
+                               "aria-label": "the polygon: each vertex is a button; arrow keys move it, Page Up and Page Down go to the previous and next vertex, Insert adds a vertex after it, Delete removes it"}, root);
     this.path = element("path", {fill: "none", stroke: "currentColor", "stroke-width": 1.5, "vector-effect": "non-scaling-stroke"}, this.svg);
+    this.arrowPath = element("path", {fill: "none", stroke: "#7c3aed", "stroke-width": 1.5, "vector-effect": "non-scaling-stroke", class: "ddg-lab-arrows"}, this.svg);
     this.dots = element("g", {}, this.svg);
     this.summary = element("p", {class: "ddg-summary", "aria-live": "polite"}, root);
-    [this.shape, this.n].forEach(function (input) { input.addEventListener("change", function () { self.reset(); }); });
+    this.detail = element("p", {class: "ddg-detail ddg-lab-detail", "aria-live": "polite"}, root);
+    this.chart = element("svg", {class: "ddg-panel ddg-lab-chart", viewBox: "0 0 360 120", width: 360, height: 120, "aria-hidden": "true"}, root);
+    this.caption = element("p", {class: "ddg-detail ddg-lab-caption"}, root);
+    this.history = [];
+    this.selected = 0;
+    this.flows = new Flows(this, element("div", {class: "ddg-lab-flows"}, root));
+    this.shape.addEventListener("change", function () { self.reset(); });
+    this.n.addEventListener("change", function () { if (Number(self.n.value) !== self.presetN) self.reset(); });  // not again on blur
     reset.addEventListener("click", function () { self.reset(); });
     this.kind.addEventListener("change", function () { self.update(); });
+    this.arrows.addEventListener("change", function () { self.update(); });
+    this.draw.addEventListener("click", function () { self.toggleDrawing(); });
+    add.addEventListener("click", function () { self.add(self.selected); });
+    remove.addEventListener("click", function () { self.remove(self.selected); });
+    undo.addEventListener("click", function () { self.undo(); });
+    root.addEventListener("keydown", function (event) {
+      if ((event.ctrlKey || event.metaKey) && event.key.toLowerCase() === "z") { event.preventDefault(); self.undo(); }
+    });
     this.dots.addEventListener("keydown", function (event) { self.key(event); });
-    this.dots.addEventListener("pointerdown", function (event) {
+    this.svg.addEventListener("pointerdown", function (event) {
+      if (self.drawing) {
+        self.remember();
+        self.vertices.push(self.point(event));
+        self.rebuild();
+        return;
+      }
       if (event.target.index === undefined) return;
+      self.remember();
       self.dragging = event.target.index;
+      self.select(event.target.index);
       event.target.setPointerCapture(event.pointerId);
-      event.target.focus();
       event.preventDefault();
     });
-    this.dots.addEventListener("pointermove", function (event) {
+    this.svg.addEventListener("pointermove", function (event) {
       if (self.dragging === undefined) return;
-      var p = self.svg.createSVGPoint();
-      p.x = event.clientX; p.y = event.clientY;
-      p = p.matrixTransform(self.svg.getScreenCTM().inverse());
-      self.vertices[self.dragging] = [p.x, -p.y];
+      self.vertices[self.dragging] = self.point(event);
       if (!self.frame) self.frame = requestAnimationFrame(function () { self.frame = 0; self.update(self.dragging); });
     });
     ["pointerup", "pointercancel"].forEach(function (name) {
-      self.dots.addEventListener(name, function () {
+      self.svg.addEventListener(name, function () {
         if (self.dragging !== undefined) self.update(self.dragging);  // the summary of where it was let go
         self.dragging = undefined;
       });
@@ -74,42 +167,109 @@
     this.reset();
   }
 
-  Lab.prototype.reset = function () {  // the preset: n vertices on the shape, clockwise, at t = 2 pi k / n
-    var n = Math.min(Math.max(Math.round(Number(this.n.value)) || 12, 3), 2000), r = SHAPES[this.shape.value], self = this;
-    this.n.value = n;
-    this.vertices = [];
-    for (var k = 0; k < n; k++) {
-      var t = (2 * Math.PI / n) * k;
-      this.vertices.push([r(t) * Math.cos(t), -r(t) * Math.sin(t)]);
-    }
+  Lab.prototype.point = function (event) {  // the pointer in data coordinates
+    var p = this.svg.createSVGPoint();
+    p.x = event.clientX; p.y = event.clientY;
+    p = p.matrixTransform(this.svg.getScreenCTM().inverse());
+    return [p.x, -p.y];
+  };
+  Lab.prototype.remember = function () {  // for Undo: the polygon before a change (which ends the last note)
+    if (!this.drawing) this.note = "";
+    this.history.push(this.vertices.map(function (p) { return p.slice(); }));
+    if (this.history.length > 200) this.history.shift();
+  };
+  Lab.prototype.undo = function () {
+    if (!this.history.length) { this.say("Nothing to undo."); return; }
+    this.vertices = this.history.pop();
+    this.rebuild();
+  };
+  Lab.prototype.say = function (text) { this.note = text; this.update(); };
+
+  Lab.prototype.reset = function () {  // the preset: n vertices on the smooth curve at t_k, or chapter 5's polygon
+    var name = this.shape.value, smooth = SMOOTH[name], n = Math.min(Math.max(Math.round(Number(this.n.value)) || 12, 3), 2000);
+    if (this.vertices) this.remember();
+    this.n.value = this.presetN = n;
+    this.n.disabled = !smooth;
+    this.smooth = smooth;
+    this.t = smooth ? Array.from({length: n}, function (_, k) { return 2 * Math.PI * (k + smooth.shift) / n; }) : null;
+    this.vertices = smooth ? this.t.map(function (t) { return smooth.at(t)[0]; }) : POLYGONS[name].map(function (p) { return p.slice(); });
+    this.size = frame(this.svg, smooth ? Array.from({length: 96}, function (_, k) { return smooth.at(k * Math.PI / 48)[0]; }) : this.vertices);
+    this.selected = 0;
+    if (this.drawing) this.toggleDrawing();
+    this.rebuild();
+  };
+
+  Lab.prototype.rebuild = function () {  // new handles: after a preset, an added or removed vertex, drawing, undo
+    var self = this, n = this.vertices.length, focused = this.dots.contains(document.activeElement);
+    if (this.t && this.t.length !== n) this.t = null;  // no longer the smooth curve's sample
+    this.selected = Math.min(this.selected, Math.max(n - 1, 0));
     this.dots.textContent = "";
     this.circles = this.vertices.map(function (v, i) {
-      var c = element("circle", {r: Math.max(0.012, Math.min(0.045, 1.5 / n)), tabindex: i ? -1 : 0, role: "button", class: "ddg-handle"}, self.dots);
+      var c = element("circle", {r: this.size * Math.max(0.004, Math.min(0.015, 0.5 / n)), tabindex: i === self.selected ? 0 : -1,
+                                 role: "button", class: "ddg-handle"}, self.dots);
       c.index = i;
       return c;
-    });
+    }, this);
+    if (focused && n) this.circles[this.selected].focus();  // the keys keep working after Undo
     this.update();
   };
 
+  Lab.prototype.select = function (i) {
+    if (this.circles[this.selected]) this.circles[this.selected].setAttribute("tabindex", -1);
+    this.selected = i;
+    this.circles[i].setAttribute("tabindex", 0);
+    this.circles[i].focus();
+  };
+  Lab.prototype.add = function (i) {  // a vertex in the middle of the edge from v_i to v_{i+1}
+    var v = this.vertices, n = v.length;
+    if (n < 2) { this.say("Place two vertices first."); return; }
+    this.remember();
+    var p = v[i], q = v[(i + 1) % n];
+    v.splice(i + 1, 0, [(p[0] + q[0]) / 2, (p[1] + q[1]) / 2]);
+    this.selected = i + 1;
+    this.rebuild();
+    this.circles[i + 1].focus();
+  };
+  Lab.prototype.remove = function (i) {
+    if (this.vertices.length <= 3) { this.say("A closed polygon needs at least 3 vertices: vertex " + i + " stays."); return; }
+    this.remember();
+    this.vertices.splice(i, 1);
+    this.selected = i % this.vertices.length;
+    this.rebuild();
+    this.circles[this.selected].focus();
+  };
+  Lab.prototype.toggleDrawing = function () {
+    this.drawing = !this.drawing;
+    this.draw.setAttribute("aria-pressed", String(this.drawing));
+    this.draw.textContent = this.drawing ? "Done" : "Draw";
+    this.svg.classList.toggle("ddg-drawing", this.drawing);  // a finger draws instead of scrolling
+    if (this.drawing) {
+      this.remember();
+      this.vertices = [];
+      this.note = "Click or tap in the plane to place the vertices, clockwise; press Done to finish.";
+      this.rebuild();
+    } else {
+      this.note = "";
+      this.update();
+    }
+  };
   Lab.prototype.move = function (i, p) {
     this.vertices[i] = p;
     this.update(i);
   };
 
   Lab.prototype.key = function (event) {
-    var i = event.target.index, n = this.vertices.length, step = event.shiftKey ? 0.1 : 0.01;
+    var i = event.target.index, n = this.vertices.length, step = (event.shiftKey ? 0.1 : 0.01);
     var moves = {ArrowLeft: [-step, 0], ArrowRight: [step, 0], ArrowUp: [0, step], ArrowDown: [0, -step]};
     var to = {PageUp: i - 1, PageDown: i + 1, Home: 0, End: n - 1}[event.key];
-    if (i === undefined || !(event.key in moves || to !== undefined)) return;
+    if (i === undefined) return;
+    if (event.key === "Insert" || event.key === "+") { event.preventDefault(); this.add(i); return; }
+    if (event.key === "Delete" || event.key === "-" || event.key === "Backspace") { event.preventDefault(); this.remove(i); return; }
+    if (!(event.key in moves || to !== undefined)) return;
     event.preventDefault();
-    if (to !== undefined) {
-      to = (to + n) % n;
-      this.circles[i].setAttribute("tabindex", -1);
-      this.circles[to].setAttribute("tabindex", 0);
-      this.circles[to].focus();
-      return;
-    }
+    if (to !== undefined) { this.select((to + n) % n); this.update(); return; }
     var v = this.vertices[i];
+    this.remember();
     this.move(i, [v[0] + moves[event.key][0], v[1] + moves[event.key][1]]);
   };
 
@@ -118,7 +278,7 @@
    * largest |k|), so each attribute is written only where it changed. */
   Lab.prototype.update = function (moved) {
     var v = this.vertices, n = v.length, kind = this.kind.value, lab = window.ddgLab, curve = null, k = null, parts = [], s = this.summary;
-    this.path.setAttribute("d", "M" + v.map(function (p) { return p[0] + "," + -p[1]; }).join("L") + "Z");
+    this.path.setAttribute("d", pathOf(v, !this.drawing));
     ["turningNumber", "length", "signedArea"].forEach(function (name) { delete s.dataset[name]; });
     try { curve = new lab.DiscreteCurve(v); } catch (e) { parts.push("Not a polygon the lecture allows: " + e.message + "."); }
     if (curve) {
@@ -142,6 +302,134 @@
                      (k ? ", " + kind + " curvature " + short(k[i]) : ""));
     });
     s.textContent = parts.join(" ");
+    this.gradient = curve && this.arrows.checked ? curve.length_gradient() : null;
+    this.arrowPath.setAttribute("d", this.gradient ? this.arrowsPath(this.gradient) : "");
+    this.describe(curve, k);
+  };
+
+  Lab.prototype.arrowsPath = function (g) {  // grad L at each vertex, the longest 0.2 of the view
+    var v = this.vertices, top = Math.max.apply(null, g.map(function (x) { return Math.hypot(x[0], x[1]); })) || 1;
+    var scale = 0.2 * this.size / top, head = 0.02 * this.size;
+    return g.map(function (x, i) {
+      var a = v[i], b = [a[0] + scale * x[0], a[1] + scale * x[1]], len = Math.hypot(x[0], x[1]) * scale;
+      if (len < 1e-9 * this.size) return "";
+      var ux = (b[0] - a[0]) / len, uy = (b[1] - a[1]) / len, h = Math.min(head, len / 2);
+      return "M" + a[0] + "," + -a[1] + "L" + b[0] + "," + -b[1] +
+             "M" + (b[0] - h * (ux - 0.5 * uy)) + "," + -(b[1] - h * (uy + 0.5 * ux)) + "L" + b[0] + "," + -b[1] +
+             "L" + (b[0] - h * (ux + 0.5 * uy)) + "," + -(b[1] - h * (uy - 0.5 * ux));
+    }, this).join("");
+  };
+
+  /* The selected vertex in words, and the chosen curvature along the polygon beside the smooth curve's. */
+  Lab.prototype.describe = function (curve, k) {
+    var i = this.selected, words = [], kind = this.kind.value, self = this;
+    if (this.note) words.push(this.note);
+    if (curve) {
+      var psi = curve.turning_angles[i], g = curve.length_gradient()[i];
+      words.push("Vertex " + i + ": ψ = " + short(psi * 180 / Math.PI) + "° (" + (psi > 0 ? "turning clockwise" : psi < 0 ? "turning counter-clockwise" : "straight") + "); k: " +
+                 window.ddgLab.CURVATURES.map(function (name) {
+                   try { return name + " " + short(curve.curvature(name)[i]); } catch (e) { return name + " undefined"; }
+                 }).join(", ") + "; |∇L| = " + short(Math.hypot(g[0], g[1])) + ".");
+    }
+    this.detail.textContent = words.join(" ");
+    var series = [], values = [];
+    if (k) { series.push({color: "currentColor", points: k.map(function (x, j) { return [j, x]; })}); values = values.concat(k); }
+    var smooth = this.t ? this.t.map(function (t) { return kappa(t, self.smooth.at); }) : null;
+    if (smooth) { series.push({color: RAMP[2], dashed: true, points: smooth.map(function (x, j) { return [j, x]; })}); values = values.concat(smooth); }
+    var lo = Math.min(0, Math.min.apply(null, values)), hi = Math.max(0, Math.max.apply(null, values));
+    plot(this.chart, series, 0, Math.max(this.vertices.length - 1, 1), lo, hi);
+    this.caption.textContent = k ? "Above: the " + kind + " curvature k_i (solid) at vertex 0 to " + (k.length - 1) +
+      (smooth ? ", and the smooth curve's curvature κ(t_i) where it was sampled (dashed)" : "") +
+      "; from " + short(lo) + " to " + short(hi) + "." : "";
+  };
+
+  /* The three flows side by side, from the lab's polygon: ddg.flow.flow's explicit steps (ddgLab.flow_step),
+   * the one furthest behind in time first, so all three show the same moment. */
+  function Flows(lab, root) {
+    var self = this, controls = element("div", {class: "ddg-controls"}, root);
+    this.lab = lab;
+    this.start = button(controls, "Flow this shape", "run the three flows from the polygon above");
+    this.play = button(controls, "Play", "play or pause the flows");
+    this.play.setAttribute("aria-pressed", "false");
+    this.stepButton = button(controls, "Step", "one step of the flow furthest behind");
+    this.panels = element("div", {class: "ddg-lab-panels"}, root);
+    this.chart = element("svg", {class: "ddg-panel ddg-lab-chart", viewBox: "0 0 360 120", width: 360, height: 120, "aria-hidden": "true"}, root);
+    this.caption = element("p", {class: "ddg-detail"}, root);
+    this.status = element("p", {class: "ddg-summary ddg-lab-flow-status", "aria-live": "polite"}, root);
+    this.start.addEventListener("click", function () { self.begin(); });
+    this.play.addEventListener("click", function () { self.toggle(); });
+    this.stepButton.addEventListener("click", function () { if (!self.runs) self.begin(); self.step(); self.draw(); });
+  }
+  Flows.prototype.begin = function () {
+    var self = this, v = this.lab.vertices.map(function (p) { return p.slice(); }), curve;
+    this.pause();
+    try { curve = new window.ddgLab.DiscreteCurve(v); } catch (e) { this.status.textContent = "No flow: " + e.message + "."; return; }
+    this.panels.textContent = "";
+    this.area0 = curve.signed_area;
+    this.length0 = curve.length;
+    this.areaUnit = Math.abs(this.area0) > 1e-9 * this.length0 * this.length0 ? Math.abs(this.area0) : this.length0 * this.length0 / (4 * Math.PI);
+    this.runs = window.ddgLab.CURVATURES.map(function (kind) {
+      var figure = element("figure", {class: "ddg-lab-flow"}, self.panels), svg = element("svg", {class: "ddg-panel", width: 170, height: 170, "aria-hidden": "true"}, figure);
+      frame(svg, v);
+      var run = {kind: kind, vertices: v, t: 0, stopped: null, record: [[0, 1, curve.signed_area / self.areaUnit]],
+                 path: element("path", {fill: "none", stroke: FLOW_COLORS[kind], "stroke-width": 2, "vector-effect": "non-scaling-stroke"}, svg),
+                 label: element("figcaption", {}, figure)};
+      element("path", {d: pathOf(v, true), fill: "none", stroke: "currentColor", "stroke-opacity": 0.3, "vector-effect": "non-scaling-stroke"}, svg);
+      return run;
+    });
+    this.draw();
+  };
+  Flows.prototype.step = function () {  // one explicit step of the running flow with the smallest t
+    var open = (this.runs || []).filter(function (r) { return !r.stopped; });
+    if (!open.length) return false;
+    var run = open.reduce(function (a, b) { return b.t < a.t ? b : a; });
+    try {
+      var next = window.ddgLab.flow_step(run.vertices, run.kind, this.length0), c = new window.ddgLab.DiscreteCurve(next.vertices);
+      run.vertices = next.vertices;
+      run.t += next.dt;
+      run.record.push([run.t, c.length / this.length0, c.signed_area / this.areaUnit]);
+    } catch (e) {
+      run.stopped = e.message.replace(/^stopped at t = [^:]*: /, "");
+    }
+    return true;
+  };
+  Flows.prototype.toggle = function () {
+    if (this.timer) { this.pause(); return; }
+    if (!this.runs || this.runs.every(function (r) { return r.stopped; })) this.begin();
+    var self = this;
+    this.play.textContent = "Pause";
+    this.play.setAttribute("aria-pressed", "true");
+    var tick = function () {  // steps for up to 8 ms of each frame
+      var until = performance.now() + 8, going = true;
+      while (going && performance.now() < until) going = self.step();
+      self.draw();
+      self.timer = going ? requestAnimationFrame(tick) : 0;
+      if (!going) self.pause();
+    };
+    this.timer = requestAnimationFrame(tick);
+  };
+  Flows.prototype.pause = function () {
+    if (this.timer) cancelAnimationFrame(this.timer);
+    this.timer = 0;
+    this.play.textContent = "Play";
+    this.play.setAttribute("aria-pressed", "false");
+  };
+  Flows.prototype.draw = function () {
+    var series = [], tmax = 0, lo = 0, hi = 1;
+    this.runs.forEach(function (r) {
+      r.path.setAttribute("d", pathOf(r.vertices, true));
+      r.label.textContent = r.kind + " flow, t = " + short(r.t) + (r.stopped ? ": stopped" : "");
+      tmax = Math.max(tmax, r.t);
+      r.record.forEach(function (p) { lo = Math.min(lo, p[2]); hi = Math.max(hi, p[2]); });
+      series.push({color: FLOW_COLORS[r.kind], points: r.record.map(function (p) { return [p[0], p[1]]; })},
+                  {color: FLOW_COLORS[r.kind], dashed: true, points: r.record.map(function (p) { return [p[0], p[2]]; })});
+    });
+    plot(this.chart, series, 0, tmax || 1, lo, hi);
+    this.caption.textContent = "Above: the length L/L(0) (solid) and the signed area A/" + (this.areaUnit === Math.abs(this.area0) ? "|A(0)|" : "(L(0)²/4π)") +
+      " (dashed) of each flow against time t, from 0 to " + short(tmax) + "; angle blue, sine orange, tangent green.";
+    this.status.textContent = this.runs.map(function (r) {
+      return r.kind + " flow: " + (r.stopped ? "stopped at t = " + short(r.t) + ": " + r.stopped : "t = " + short(r.t) + ", length " + short(r.record[r.record.length - 1][1] * this.length0)) + ".";
+    }, this).join(" ");
   };
 
   function start() {

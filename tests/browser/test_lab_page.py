@@ -1,5 +1,7 @@
-"""The lab of chapter 10 in the built book, in Chromium: a reader drags a vertex and moves another
-with the keys, and the summary says what ddg says of the moved polygon.
+"""The lab of chapter 10 in the built book, in Chromium: a reader operates every control (presets,
+keys, buttons, drawing, dragging by mouse and finger, the three flows) at desktop and phone width,
+light and dark, and what the page shows (the summary, the line on the selected vertex, the arrows,
+the chart's range, the flows) is what ddg computes for the same polygon.
 
 Needs the book built (`make book`); the student edition is not needed, so the book alone is
 served on loopback here.
@@ -15,6 +17,8 @@ import pytest
 from browser_helpers import SITES, Visit
 
 import ddg
+from ddg.explore import POLYGONS, SHAPES
+from ddg.flow import flow
 
 PAGE = "book/10_explorers.html"
 
@@ -115,3 +119,169 @@ def test_the_lab_scripts_load_only_on_the_labs_page(browser, book):
                 assert any(s.endswith("/" + name) or f"/{name}?" in s for s in scripts) == wanted, (path, name)
         finally:
             visit.close()
+
+
+def lab_state(page):
+    return page.evaluate("""() => { const lab = document.querySelector('.ddg-lab').lab;
+        return {vertices: lab.vertices, arrows: lab.arrowPath.getAttribute('d'), detail: lab.detail.textContent,
+                caption: lab.caption.textContent, kind: lab.kind.value, selected: lab.selected}; }""")
+
+
+def arrows_are_ddgs(state):
+    """Each drawn arrow starts at its vertex and points along ddg's gradient of length, the lengths in
+    proportion (one scale for all)."""
+    v = np.array(state["vertices"])
+    numbers = np.array([float(x) for x in re.findall(r"-?[\d.]+(?:e-?\d+)?", state["arrows"])]).reshape(-1, 5, 2)
+    assert len(numbers) == len(v), (len(numbers), len(v))
+    numbers[..., 1] *= -1  # the SVG's y points down
+    gradient = ddg.DiscreteCurve(v).length_gradient()
+    assert np.allclose(numbers[:, 0], v, atol=1e-12)
+    drawn = numbers[:, 1] - numbers[:, 0]
+    scale = np.linalg.norm(drawn, axis=1).max() / np.linalg.norm(gradient, axis=1).max()
+    assert np.allclose(drawn, scale * gradient, atol=1e-9 * scale), drawn - scale * gradient
+
+
+def detail_is_ddgs(state):
+    """The line on the selected vertex: its psi in degrees and its three curvatures, as ddg gives them."""
+    curve, i = ddg.DiscreteCurve(np.array(state["vertices"])), state["selected"]
+    numbers = [float(x) for x in re.findall(r"-?\d+(?:\.\d+)?(?:e-?\d+)?", state["detail"].split(f"Vertex {i}:")[1])]
+    want = [np.degrees(curve.turning_angles[i]), *(curve.curvature(k)[i] for k in ddg.CURVATURES),
+            np.linalg.norm(curve.length_gradient()[i])]
+    assert np.allclose(numbers, [six(x) for x in want], rtol=1e-12, atol=1e-12), (state["detail"], want)
+
+
+def touch_drag(page, x, y, dx, dy):
+    """A finger on (x, y) moving by (dx, dy) in five steps (Chromium's touch events: pointerType touch)."""
+    cdp = page.context.new_cdp_session(page)
+    cdp.send("Input.dispatchTouchEvent", {"type": "touchStart", "touchPoints": [{"x": x, "y": y}]})
+    for k in range(1, 6):
+        cdp.send("Input.dispatchTouchEvent", {"type": "touchMove", "touchPoints": [{"x": x + dx * k / 5, "y": y + dy * k / 5}]})
+    cdp.send("Input.dispatchTouchEvent", {"type": "touchEnd", "touchPoints": []})
+    cdp.detach()
+
+
+@pytest.mark.parametrize("view", ["desktop, light, mouse", "phone, dark, touch"])
+def test_every_control_of_the_lab_against_ddg(browser, book, view):
+    """From a chapter's link (?lab=star&kind=tangent&arrows=1): the preset, the arrows and the line on
+    the selected vertex are ddg's; a preset with n, adding, removing and undoing by keys and by the
+    buttons, drawing a polygon, dragging by mouse or finger; then the three flows, stepped and
+    played to their stop rules, as ddg.flow runs them; axe finds nothing serious at the end."""
+    from test_site import AXE_OPTIONS, axe_violations
+
+    phone = view.startswith("phone")
+    context = browser.new_context(viewport={"width": 390 if phone else 1280, "height": 844 if phone else 900},
+                                  color_scheme="dark" if phone else "light", has_touch=phone)
+    page = context.new_page()
+    errors = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    press = (lambda locator: locator.tap()) if phone else (lambda locator: locator.click())
+    try:
+        page.goto(book + PAGE + "?lab=star&kind=tangent&arrows=1")
+        lab = page.locator(".ddg-lab")
+        lab.scroll_into_view_if_needed()
+        state = lab_state(page)
+        assert state["kind"] == "tangent"
+        assert np.allclose(state["vertices"], POLYGONS["non-convex star"].vertices, rtol=0, atol=1e-15)
+        arrows_are_ddgs(state)
+        detail_is_ddgs(state)
+        summary_is_ddgs(page)
+
+        # the ellipse with 30 vertices: ddg's sample; the chart's range is ddg's k and kappa
+        lab.locator("select").first.select_option("ellipse")
+        lab.locator("input[type=number]").fill("30")
+        lab.locator("input[type=number]").dispatch_event("change")
+        ellipse = SHAPES["ellipse"]
+        t = ellipse.sample_parameters(30)
+        state = lab_state(page)
+        assert np.allclose(state["vertices"], ellipse.position(t), rtol=0, atol=1e-15)
+        values = np.r_[ddg.DiscreteCurve(ellipse.position(t)).curvature("tangent"), ellipse.curvature(t)]
+        low, high = re.search(r"from (\S+) to (\S+)\.$", state["caption"]).groups()
+        assert float(low) == six(min(0, values.min())) and float(high) == six(values.max()), state["caption"]
+        arrows_are_ddgs(state)
+
+        # keys: Insert adds the middle of the edge after vertex 4, Delete removes it, Ctrl+Z undoes
+        before = np.array(state["vertices"])
+        lab.locator("circle").nth(4).focus()
+        page.keyboard.press("Insert")
+        added = np.array(lab_state(page)["vertices"])
+        assert np.allclose(added, np.insert(before, 5, (before[4] + before[5]) / 2, axis=0), rtol=0, atol=1e-15)
+        assert page.evaluate("() => document.activeElement.index") == 5
+        detail_is_ddgs(lab_state(page))
+        psi = float(re.search(r"ψ = (\S+)°", lab_state(page)["detail"])[1])
+        assert abs(psi) < 1e-12  # the new vertex does not turn (to rounding: a midpoint is rounded)
+        page.keyboard.press("Delete")
+        assert np.array_equal(lab_state(page)["vertices"], before)
+        page.keyboard.press("Control+z")
+        assert np.array_equal(lab_state(page)["vertices"], added)
+        page.keyboard.press("Control+z")
+        assert np.array_equal(lab_state(page)["vertices"], before)
+
+        # the buttons, by pointer or finger: add after the selected vertex, remove it, undo
+        press(lab.get_by_role("button", name="Add vertex"))
+        assert len(lab_state(page)["vertices"]) == 31
+        press(lab.get_by_role("button", name="Remove vertex"))
+        press(lab.get_by_role("button", name="Undo"))
+        assert len(lab_state(page)["vertices"]) == 31
+        summary_is_ddgs(page)
+        for _ in range(40):  # a polygon keeps three vertices: the fourth removal is refused, in words
+            press(lab.get_by_role("button", name="Remove vertex")) if len(lab_state(page)["vertices"]) <= 4 else \
+                page.evaluate("() => { const l = document.querySelector('.ddg-lab').lab; l.remove(l.selected); }")
+        assert len(lab_state(page)["vertices"]) == 3 and "at least 3 vertices" in lab_state(page)["detail"]
+
+        # drawing: four clicks or taps, clockwise, make the polygon
+        press(lab.get_by_role("button", name="Draw"))
+        box = lab.locator("svg.ddg-lab-svg").bounding_box()
+        corners = [(0.3, 0.3), (0.7, 0.35), (0.65, 0.7), (0.3, 0.65)]
+        for fx, fy in corners:
+            x, y = box["x"] + fx * box["width"], box["y"] + fy * box["height"]
+            page.touchscreen.tap(x, y) if phone else page.mouse.click(x, y)
+        press(lab.get_by_role("button", name="Done"))
+        drawn = summary_is_ddgs(page)
+        assert len(drawn) == 4 and ddg.DiscreteCurve(drawn).turning_number == 1  # clockwise on the screen
+        # dragging vertex 2 by mouse or finger moves it alone
+        dot = lab.locator("circle").nth(2)
+        b = dot.bounding_box()
+        x, y = b["x"] + b["width"] / 2, b["y"] + b["height"] / 2
+        if phone:
+            touch_drag(page, x, y, 20, 15)
+        else:
+            page.mouse.move(x, y)
+            page.mouse.down()
+            for k in range(1, 6):
+                page.mouse.move(x + 4 * k, y + 3 * k)
+            page.mouse.up()
+        moved = summary_is_ddgs(page)
+        assert moved[2, 0] > drawn[2, 0] and moved[2, 1] < drawn[2, 1], moved[2] - drawn[2]
+        assert np.array_equal(np.delete(moved, 2, axis=0), np.delete(drawn, 2, axis=0))
+
+        # the three flows from the regular 24-gon: three steps are ddg's first step of each flow
+        lab.locator("select").first.select_option("regular n-gon")
+        lab.locator("input[type=number]").fill("24")
+        lab.locator("input[type=number]").dispatch_event("change")
+        polygon = ddg.DiscreteCurve(np.array(lab_state(page)["vertices"]))
+        press(lab.get_by_role("button", name="Flow this shape"))
+        for _ in range(3):
+            press(lab.get_by_role("button", name="Step"))
+        runs = page.evaluate("() => document.querySelector('.ddg-lab').lab.flows.runs.map(r => [r.kind, r.t, r.vertices])")
+        for kind, t, vertices in runs:
+            step = flow(polygon, kind, 10.0, max_steps=1, snapshots=2, progress=False)
+            assert abs(t - step.times[-1]) <= 1e-12 * t and np.allclose(vertices, step.snapshots[-1][1].vertices, rtol=0, atol=1e-12)
+        press(lab.get_by_role("button", name="Play"))
+        status = lab.locator(".ddg-lab-flow-status")
+        page.wait_for_function("() => document.querySelector('.ddg-lab').lab.flows.runs.every(r => r.stopped)", timeout=60_000)
+        text = status.inner_text()
+        for kind in ddg.CURVATURES:
+            run = flow(polygon, kind, 10.0, snapshots=2, progress=False)
+            said = re.search(rf"{kind} flow: stopped at t = (\S+): ([^.]+)", text)
+            assert said and float(said[1]) == pytest.approx(run.times[-1], rel=1e-5), (kind, text, run.times[-1], run.stopped)
+            assert said[2] in run.stopped, (said[2], run.stopped)
+        assert lab.get_by_role("button", name="Play").get_attribute("aria-pressed") == "false"
+
+        class Seen:  # what axe_violations needs of a Visit
+            ignoring = False
+        seen = Seen()
+        seen.page = page
+        assert not axe_violations(seen, AXE_OPTIONS), view
+        assert not errors, errors
+    finally:
+        context.close()
