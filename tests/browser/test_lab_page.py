@@ -14,7 +14,7 @@ import threading
 
 import numpy as np
 import pytest
-from browser_helpers import SITES, Visit
+from browser_helpers import EVERY_SECTION, SITES, Visit
 
 import ddg
 from ddg.explore import POLYGONS, SHAPES
@@ -281,7 +281,32 @@ def test_every_control_of_the_lab_against_ddg(browser, book, view):
             ignoring = False
         seen = Seen()
         seen.page = page
+        page.add_style_tag(content=EVERY_SECTION)  # as the site's test: every section drawn for axe's contrast
         assert not axe_violations(seen, AXE_OPTIONS), view
         assert not errors, errors
+    finally:
+        context.close()
+
+
+def test_each_chapters_link_opens_the_lab_with_its_preset(browser, book):
+    """Chapters 3-9 each link to the lab; the link's preset is what the lab starts from."""
+    context = browser.new_context()
+    page = context.new_page()
+    try:
+        for chapter in ("03_winding_number", "04_gradient_of_length", "05_inflation", "06_table",
+                        "07_convergence", "08_classical_theorems", "09_curve_shortening"):
+            page.goto(f"{book}book/{chapter}.html")
+            link = page.locator("a.ddg-lab-link")
+            assert link.count() == 1, chapter
+            query = dict(re.findall(r"[?&](\w+)=([\w-]+)", link.get_attribute("href")))
+            link.click()
+            page.wait_for_url(re.compile(r"10_explorers\.html\?"))
+            shape, kind, n, arrows = page.evaluate("""() => { const lab = document.querySelector('.ddg-lab').lab;
+                return [lab.shape.value, lab.kind.value, lab.vertices.length, lab.arrows.checked]; }""")
+            names = {"regular": "regular n-gon", "ellipse": "ellipse", "blob": "non-convex blob", "eight": "figure-eight",
+                     "star": "star (chapter 5)", "pentagon": "convex pentagon (chapter 5)"}
+            assert shape == names[query["lab"]], (chapter, shape)
+            assert kind == query.get("kind", "angle") and arrows == (query.get("arrows") == "1"), chapter
+            assert "n" not in query or n == int(query["n"]), chapter
     finally:
         context.close()
