@@ -54,6 +54,8 @@
       return ("0" + Math.floor(a + t * (b - a) + 0.5).toString(16)).slice(-2);
     }).join("");
   }
+  var LEVELS = Array.from({length: 65}, function (_, j) { return ramp(j / 64); });  // the ramp in 65 steps: a drag
+  // rewrites the colour of a vertex only when it moves by a step (a phone restyles 500 circles slowly)
   function short(x) { return String(Number(x.toPrecision(6))); }  // six significant digits, as the summary shows them
   function element(name, attributes, parent) {
     var svg = ["svg", "path", "circle", "g", "polyline", "line"].indexOf(name) >= 0;
@@ -85,13 +87,21 @@
   function pathOf(points, closed) {
     return points.length ? "M" + points.map(function (p) { return p[0] + "," + -p[1]; }).join("L") + (closed ? "Z" : "") : "";
   }
-  function plot(svg, series, x0, x1, y0, y1) {  // polylines in a 360 x 120 chart: [[x, y] ...], styles
-    var w = 360, h = 120, sx = w / (x1 - x0 || 1), sy = (h - 8) / (y1 - y0 || 1);
-    svg.textContent = "";
-    element("line", {x1: 0, x2: w, y1: h - 4 + y0 * sy, y2: h - 4 + y0 * sy, stroke: "currentColor", "stroke-opacity": 0.3}, svg);
-    series.forEach(function (s) {
-      element("polyline", {fill: "none", stroke: s.color, "stroke-width": 1.5, "stroke-dasharray": s.dashed ? "5 3" : "none",
-                           points: s.points.map(function (p) { return ((p[0] - x0) * sx).toFixed(2) + "," + (h - 4 - (p[1] - y0) * sy).toFixed(2); }).join(" ")}, svg);
+  function plot(svg, series, x0, x1, y0, y1) {  // polylines in a 360 x 120 chart: [[x, y] ...], styles; kept and reused
+    var pad = 0.06 * (y1 - y0 || 1), w = 360, h = 120, sx = w / (x1 - x0 || 1), sy = (h - 8) / (y1 - y0 + 2 * pad);
+    y0 -= pad;
+    if (!svg.axis) svg.axis = element("line", {x1: 0, x2: w, stroke: "currentColor", "stroke-opacity": 0.3}, svg);
+    svg.axis.setAttribute("y1", h - 4 + y0 * sy);
+    svg.axis.setAttribute("y2", h - 4 + y0 * sy);
+    svg.lines = svg.lines || [];
+    while (svg.lines.length > series.length) svg.removeChild(svg.lines.pop());
+    series.forEach(function (s, j) {
+      var line = svg.lines[j] || (svg.lines[j] = element("polyline", {fill: "none", "stroke-width": 1.5}, svg));
+      line.setAttribute("stroke", s.color);
+      line.setAttribute("stroke-dasharray", s.dashed ? "5 3" : "none");
+      line.setAttribute("points", s.points.map(function (p) {
+        return ((p[0] - x0) * sx).toFixed(1) + "," + (h - 4 - (p[1] - y0) * sy).toFixed(1);
+      }).join(" "));
     });
   }
 
@@ -293,7 +303,7 @@
     }
     var top = k ? Math.max.apply(null, k.map(Math.abs)) || 1 : 1;
     this.circles.forEach(function (c, i) {
-      var fill = k ? ramp(0.5 + k[i] / (2 * top)) : RAMP[1];
+      var fill = k ? LEVELS[Math.round(64 * Math.min(Math.max(0.5 + k[i] / (2 * top), 0), 1))] : RAMP[1];
       if (c.fill !== fill) c.setAttribute("fill", c.fill = fill);
       if (moved !== undefined && (i - moved + n + 1) % n > 2) return;  // not moved and not a neighbour
       c.setAttribute("cx", v[i][0]);
@@ -325,11 +335,12 @@
     var i = this.selected, words = [], kind = this.kind.value, self = this;
     if (this.note) words.push(this.note);
     if (curve) {
-      var psi = curve.turning_angles[i], g = curve.length_gradient()[i];
+      var T = curve.tangents, n = T.length, before = T[(i + n - 1) % n], A = curve.dual_lengths[i];
+      var psi = curve.turning_angles[i], g = [(before[0] - T[i][0]) / A, (before[1] - T[i][1]) / A];  // (grad L)_i, as length_gradient
       words.push("Vertex " + i + ": ψ = " + short(psi * 180 / Math.PI) + "° (" + (psi > 0 ? "turning clockwise" : psi < 0 ? "turning counter-clockwise" : "straight") + "); k: " +
                  window.ddgLab.CURVATURES.map(function (name) {
                    try { return name + " " + short(curve.curvature(name)[i]); } catch (e) { return name + " undefined"; }
-                 }).join(", ") + "; |∇L| = " + short(Math.hypot(g[0], g[1])) + ".");
+                 }).join(", ") + "; |\u2060∇L\u2060| = " + short(Math.hypot(g[0], g[1])) + ".");
     }
     this.detail.textContent = words.join(" ");
     var series = [], values = [];
@@ -355,6 +366,7 @@
     this.panels = element("div", {class: "ddg-lab-panels"}, root);
     this.chart = element("svg", {class: "ddg-panel ddg-lab-chart", viewBox: "0 0 360 120", width: 360, height: 120, "aria-hidden": "true"}, root);
     this.caption = element("p", {class: "ddg-detail"}, root);
+    this.chart.style.display = "none";  // until a flow starts
     this.status = element("p", {class: "ddg-summary ddg-lab-flow-status", "aria-live": "polite"}, root);
     this.start.addEventListener("click", function () { self.begin(); });
     this.play.addEventListener("click", function () { self.toggle(); });
@@ -365,6 +377,7 @@
     this.pause();
     try { curve = new window.ddgLab.DiscreteCurve(v); } catch (e) { this.status.textContent = "No flow: " + e.message + "."; return; }
     this.panels.textContent = "";
+    this.chart.style.display = "";
     this.area0 = curve.signed_area;
     this.length0 = curve.length;
     this.areaUnit = Math.abs(this.area0) > 1e-9 * this.length0 * this.length0 ? Math.abs(this.area0) : this.length0 * this.length0 / (4 * Math.PI);

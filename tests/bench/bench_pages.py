@@ -9,7 +9,8 @@ Chromium as a phone sees it: a 390 x 844 viewport, the CPU slowed 4x and a "fast
 transferred (as sent: compressed, with headers), the first contentful paint, the time until every
 formula is final (typeset and its fonts arrived; on a page with no math, nothing), and the layout
 shift score (0 when nothing moves as the page arrives). Then the bytes of the heaviest page by
-asset, and the same pages on a desktop (1280 x 900, nothing slowed).
+asset, the same pages on a desktop (1280 x 900, nothing slowed), and the frame times of chapter
+10's lab on the phone (a dragged vertex; the three flows playing) for n = 100, 500 and 2000.
 
 A benchmark: timings are noisy (the machine is shared), so it reports and asserts nothing; the
 browser tests assert what is deterministic (tests/browser/test_site.py: bytes, scripts, math).
@@ -136,6 +137,46 @@ def measure(browser, url, profile, slow):
     return result
 
 
+# The lab's frame (chapter 10): a vertex moved as a pointer drags it, then two animation frames (the
+# update, its layout and paint); and one frame of the three flows playing (8 ms of steps, drawn).
+LAB_FRAMES = """async (count) => {
+    const lab = document.querySelector('.ddg-lab').lab, frame = () => new Promise(r => requestAnimationFrame(r));
+    const drag = [], flow = [];
+    for (let k = 0; k < 6; k++) lab.move(3, lab.vertices[3].slice());  // compiled first, as after a moment's use
+    for (let k = 0; k < count; k++) {
+        const t = performance.now(), v = lab.vertices[3];
+        lab.move(3, [v[0] + (k % 2 ? -0.01 : 0.01), v[1]]);
+        await frame(); await frame();
+        drag.push(performance.now() - t);
+    }
+    lab.flows.begin();
+    for (let k = 0; k < count; k++) {
+        const t = performance.now(), until = t + 8;
+        while (performance.now() < until && lab.flows.step()) {}
+        lab.flows.draw();
+        await frame(); await frame();
+        flow.push(performance.now() - t);
+    }
+    const median = xs => xs.sort((a, b) => a - b)[xs.length >> 1];
+    return {drag: median(drag), flow: median(flow), steps: lab.flows.runs.map(r => r.record.length - 1)};
+}"""
+
+
+def lab_frames(browser, base):
+    """The lab's frame times on a phone with its CPU 4x slower, for n = 100, 500 and 2000."""
+    print("\nthe lab on a phone, CPU 4x slower: median of 30 frames (ms; two animation frames each, 33 ms at 60 Hz)")
+    print(f"{'n':>6} {'drag a vertex':>14} {'flows playing':>14} {'flow steps in 30 frames':>24}")
+    for n in (100, 500, 2000):
+        context = browser.new_context(**PHONE)
+        page = context.new_page()
+        page.goto(f"{base}book/10_explorers.html?lab=blob&n={n}", wait_until="load")
+        cdp = context.new_cdp_session(page)
+        cdp.send("Emulation.setCPUThrottlingRate", {"rate": 4})
+        r = page.evaluate(LAB_FRAMES, 30)
+        print(f"{n:>6} {r['drag']:>14.1f} {r['flow']:>14.1f} {'/'.join(map(str, r['steps'])):>24}")
+        context.close()
+
+
 def seconds(ms):
     return "-" if ms is None else f"{ms / 1000:.1f}"
 
@@ -168,6 +209,8 @@ def main(words):
                 print(f"\n{heaviest}: {result['bytes'] / 1000:.0f} kB by asset")
                 for asset, size in sorted(result["assets"].items(), key=lambda item: -item[1]):
                     print(f"  {size / 1000:>7.1f} kB  {asset}")
+        if "book" in servers and (not words or any(w in "book/10_explorers.html" for w in words)):
+            lab_frames(browser, f"http://127.0.0.1:{servers['book'].server_port}/")
         browser.close()
     for httpd in servers.values():
         httpd.shutdown()
