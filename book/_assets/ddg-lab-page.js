@@ -200,9 +200,9 @@
     if (this.vertices) this.remember();
     this.n.value = this.presetN = n;
     this.n.disabled = !smooth;
-    this.smooth = smooth;
-    this.t = smooth ? Array.from({length: n}, function (_, k) { return 2 * Math.PI * (k + smooth.shift) / n; }) : null;
-    this.vertices = smooth ? this.t.map(function (t) { return smooth.at(t)[0]; }) : POLYGONS[name].map(function (p) { return p.slice(); });
+    var t = smooth ? Array.from({length: n}, function (_, k) { return 2 * Math.PI * (k + smooth.shift) / n; }) : [];
+    this.vertices = smooth ? t.map(function (s) { return smooth.at(s)[0]; }) : POLYGONS[name].map(function (p) { return p.slice(); });
+    this.kappa = smooth ? t.map(function (s) { return kappa(s, smooth.at); }) : null;  // kappa(t_i), for the chart
     this.size = frame(this.svg, smooth ? Array.from({length: 96}, function (_, k) { return smooth.at(k * Math.PI / 48)[0]; }) : this.vertices);
     this.selected = 0;
     if (this.drawing) this.toggleDrawing();
@@ -211,7 +211,7 @@
 
   Lab.prototype.rebuild = function () {  // new handles: after a preset, an added or removed vertex, drawing, undo
     var self = this, n = this.vertices.length, focused = this.dots.contains(document.activeElement);
-    if (this.t && this.t.length !== n) this.t = null;  // no longer the smooth curve's sample
+    if (this.kappa && this.kappa.length !== n) this.kappa = null;  // no longer the smooth curve's sample
     this.selected = Math.min(this.selected, Math.max(n - 1, 0));
     this.dots.textContent = "";
     this.circles = this.vertices.map(function (v, i) {
@@ -288,11 +288,15 @@
    * largest |k|), so each attribute is written only where it changed. */
   Lab.prototype.update = function (moved) {
     var v = this.vertices, n = v.length, kind = this.kind.value, lab = window.ddgLab, curve = null, k = null, parts = [], s = this.summary;
+    var ks = {}, gradient = null;  // each curvature and the gradient of length, computed once for everything shown
     this.path.setAttribute("d", pathOf(v, !this.drawing));
     ["turningNumber", "length", "signedArea"].forEach(function (name) { delete s.dataset[name]; });
     try { curve = new lab.DiscreteCurve(v); } catch (e) { parts.push("Not a polygon the lecture allows: " + e.message + "."); }
     if (curve) {
-      try { k = curve.curvature(kind); } catch (e) { parts.push("No " + kind + " curvature: " + e.message + "."); }
+      lab.CURVATURES.forEach(function (name) { try { ks[name] = curve.curvature(name); } catch (e) { ks[name] = e; } });
+      gradient = curve.length_gradient();
+      k = Array.isArray(ks[kind]) ? ks[kind] : null;
+      if (!k) parts.push("No " + kind + " curvature: " + ks[kind].message + ".");
       try {
         s.dataset.turningNumber = curve.turning_number;
         parts.push("Turning number " + curve.turning_number + ",");
@@ -312,9 +316,8 @@
                      (k ? ", " + kind + " curvature " + short(k[i]) : ""));
     });
     s.textContent = parts.join(" ");
-    this.gradient = curve && this.arrows.checked ? curve.length_gradient() : null;
-    this.arrowPath.setAttribute("d", this.gradient ? this.arrowsPath(this.gradient) : "");
-    this.describe(curve, k);
+    this.arrowPath.setAttribute("d", gradient && this.arrows.checked ? this.arrowsPath(gradient) : "");
+    this.describe(curve, ks, gradient);
   };
 
   Lab.prototype.arrowsPath = function (g) {  // grad L at each vertex, the longest 0.2 of the view
@@ -322,7 +325,7 @@
     var scale = 0.2 * this.size / top, head = 0.02 * this.size;
     return g.map(function (x, i) {
       var a = v[i], b = [a[0] + scale * x[0], a[1] + scale * x[1]], len = Math.hypot(x[0], x[1]) * scale;
-      if (len < 1e-9 * this.size) return "";
+      if (!(len > 0)) return "M" + a[0] + "," + -a[1] + "L" + a[0] + "," + -a[1];  // a straight vertex: nothing to draw
       var ux = (b[0] - a[0]) / len, uy = (b[1] - a[1]) / len, h = Math.min(head, len / 2);
       return "M" + a[0] + "," + -a[1] + "L" + b[0] + "," + -b[1] +
              "M" + (b[0] - h * (ux - 0.5 * uy)) + "," + -(b[1] - h * (uy + 0.5 * ux)) + "L" + b[0] + "," + -b[1] +
@@ -331,21 +334,19 @@
   };
 
   /* The selected vertex in words, and the chosen curvature along the polygon beside the smooth curve's. */
-  Lab.prototype.describe = function (curve, k) {
-    var i = this.selected, words = [], kind = this.kind.value, self = this;
+  Lab.prototype.describe = function (curve, ks, gradient) {
+    var i = this.selected, words = [], kind = this.kind.value, k = Array.isArray(ks[kind]) ? ks[kind] : null, smooth = this.kappa;
     if (this.note) words.push(this.note);
     if (curve) {
-      var T = curve.tangents, n = T.length, before = T[(i + n - 1) % n], A = curve.dual_lengths[i];
-      var psi = curve.turning_angles[i], g = [(before[0] - T[i][0]) / A, (before[1] - T[i][1]) / A];  // (grad L)_i, as length_gradient
+      var psi = curve.turning_angles[i], g = gradient[i];
       words.push("Vertex " + i + ": ψ = " + short(psi * 180 / Math.PI) + "° (" + (psi > 0 ? "turning clockwise" : psi < 0 ? "turning counter-clockwise" : "straight") + "); k: " +
                  window.ddgLab.CURVATURES.map(function (name) {
-                   try { return name + " " + short(curve.curvature(name)[i]); } catch (e) { return name + " undefined"; }
+                   return name + " " + (Array.isArray(ks[name]) ? short(ks[name][i]) : "undefined");
                  }).join(", ") + "; |\u2060∇L\u2060| = " + short(Math.hypot(g[0], g[1])) + ".");
     }
     this.detail.textContent = words.join(" ");
     var series = [], values = [];
     if (k) { series.push({color: "currentColor", points: k.map(function (x, j) { return [j, x]; })}); values = values.concat(k); }
-    var smooth = this.t ? this.t.map(function (t) { return kappa(t, self.smooth.at); }) : null;
     if (smooth) { series.push({color: RAMP[2], dashed: true, points: smooth.map(function (x, j) { return [j, x]; })}); values = values.concat(smooth); }
     var lo = Math.min(0, Math.min.apply(null, values)), hi = Math.max(0, Math.max.apply(null, values));
     plot(this.chart, series, 0, Math.max(this.vertices.length - 1, 1), lo, hi);

@@ -86,13 +86,14 @@ class Visit:
 
     The page is loaded once at desktop width in the light theme; `show(view)` then turns the same
     page into another view the way a reader's device would: a narrower window (the page lays
-    itself out again) or the system switching to dark (the theme follows it live).
+    itself out again) or the system switching to dark (the theme follows it live). With
+    ``touch=True`` the page also takes taps and finger drags.
     """
 
-    def __init__(self, browser, base, path, view="desktop"):
+    def __init__(self, browser, base, path, view="desktop", touch=False):
         self.base, self.outside, self.failed, self.console, self.requests = base, [], [], [], []
         self.ignoring = False  # requests made by axe itself are not the site's
-        self.context = browser.new_context(viewport={"width": 1280, "height": 900}, color_scheme="light")
+        self.context = browser.new_context(viewport={"width": 1280, "height": 900}, color_scheme="light", has_touch=touch)
         self.context.route("**/*", self._route)
         self.page = self.context.new_page()
         self.page.on("request", lambda r: not self.ignoring and self.requests.append(r.url))

@@ -14,11 +14,13 @@ import threading
 
 import numpy as np
 import pytest
-from browser_helpers import EVERY_SECTION, SITES, Visit
+from browser_helpers import SITES, Visit
 
 import ddg
-from ddg.explore import POLYGONS, SHAPES
+from ddg.explore import FLOW_COLORS, POLYGONS, SHAPES
 from ddg.flow import flow
+from ddg.scene import RAMP, ramp
+from ddg.smooth import SmoothCurve
 
 PAGE = "book/10_explorers.html"
 
@@ -169,14 +171,13 @@ def test_every_control_of_the_lab_against_ddg(browser, book, view):
     from test_site import AXE_OPTIONS, axe_violations
 
     phone = view.startswith("phone")
-    context = browser.new_context(viewport={"width": 390 if phone else 1280, "height": 844 if phone else 900},
-                                  color_scheme="dark" if phone else "light", has_touch=phone)
-    page = context.new_page()
-    errors = []
-    page.on("pageerror", lambda e: errors.append(str(e)))
+    visit = Visit(browser, book, PAGE + "?lab=star&kind=tangent&arrows=1", touch=phone)  # the network cut
+    page = visit.page
+    if phone:
+        visit.show("phone")
+        page.emulate_media(color_scheme="dark")
     press = (lambda locator: locator.tap()) if phone else (lambda locator: locator.click())
     try:
-        page.goto(book + PAGE + "?lab=star&kind=tangent&arrows=1")
         lab = page.locator(".ddg-lab")
         lab.scroll_into_view_if_needed()
         state = lab_state(page)
@@ -223,9 +224,10 @@ def test_every_control_of_the_lab_against_ddg(browser, book, view):
         press(lab.get_by_role("button", name="Undo"))
         assert len(lab_state(page)["vertices"]) == 31
         summary_is_ddgs(page)
-        for _ in range(40):  # a polygon keeps three vertices: the fourth removal is refused, in words
-            press(lab.get_by_role("button", name="Remove vertex")) if len(lab_state(page)["vertices"]) <= 4 else \
-                page.evaluate("() => { const l = document.querySelector('.ddg-lab').lab; l.remove(l.selected); }")
+        # a polygon keeps three vertices: from four, one removal works and the next is refused, in words
+        page.evaluate("() => { const lab = document.querySelector('.ddg-lab').lab; lab.vertices.splice(4); lab.rebuild(); }")
+        press(lab.get_by_role("button", name="Remove vertex"))
+        press(lab.get_by_role("button", name="Remove vertex"))
         assert len(lab_state(page)["vertices"]) == 3 and "at least 3 vertices" in lab_state(page)["detail"]
 
         # drawing: four clicks or taps, clockwise, make the polygon
@@ -277,25 +279,23 @@ def test_every_control_of_the_lab_against_ddg(browser, book, view):
             assert said[2] in run.stopped, (said[2], run.stopped)
         assert lab.get_by_role("button", name="Play").get_attribute("aria-pressed") == "false"
 
-        class Seen:  # what axe_violations needs of a Visit
-            ignoring = False
-        seen = Seen()
-        seen.page = page
-        page.add_style_tag(content=EVERY_SECTION)  # as the site's test: every section drawn for axe's contrast
-        assert not axe_violations(seen, AXE_OPTIONS), view
-        assert not errors, errors
+        assert not axe_violations(visit, AXE_OPTIONS), view
+        assert not visit.outside and not visit.failed and not visit.unexpected_console()
     finally:
-        context.close()
+        visit.close()
+
+
+PRESETS = {"regular": "regular n-gon", "ellipse": "ellipse", "blob": "non-convex blob", "eight": "figure-eight",
+           "star": "star (chapter 5)", "pentagon": "convex pentagon (chapter 5)"}  # ?lab= and the list's names
 
 
 def test_each_chapters_link_opens_the_lab_with_its_preset(browser, book):
     """Chapters 3-9 each link to the lab; the link's preset is what the lab starts from."""
-    context = browser.new_context()
-    page = context.new_page()
-    try:
-        for chapter in ("03_winding_number", "04_gradient_of_length", "05_inflation", "06_table",
-                        "07_convergence", "08_classical_theorems", "09_curve_shortening"):
-            page.goto(f"{book}book/{chapter}.html")
+    for chapter in ("03_winding_number", "04_gradient_of_length", "05_inflation", "06_table",
+                    "07_convergence", "08_classical_theorems", "09_curve_shortening"):
+        visit = Visit(browser, book, f"book/{chapter}.html")  # the network cut
+        page = visit.page
+        try:
             link = page.locator("a.ddg-lab-link")
             assert link.count() == 1, chapter
             query = dict(re.findall(r"[?&](\w+)=([\w-]+)", link.get_attribute("href")))
@@ -303,10 +303,49 @@ def test_each_chapters_link_opens_the_lab_with_its_preset(browser, book):
             page.wait_for_url(re.compile(r"10_explorers\.html\?"))
             shape, kind, n, arrows = page.evaluate("""() => { const lab = document.querySelector('.ddg-lab').lab;
                 return [lab.shape.value, lab.kind.value, lab.vertices.length, lab.arrows.checked]; }""")
-            names = {"regular": "regular n-gon", "ellipse": "ellipse", "blob": "non-convex blob", "eight": "figure-eight",
-                     "star": "star (chapter 5)", "pentagon": "convex pentagon (chapter 5)"}
-            assert shape == names[query["lab"]], (chapter, shape)
+            assert shape == PRESETS[query["lab"]], (chapter, shape)
             assert kind == query.get("kind", "angle") and arrows == (query.get("arrows") == "1"), chapter
             assert "n" not in query or n == int(query["n"]), chapter
+            assert not visit.outside and not visit.failed and not visit.unexpected_console(), chapter
+        finally:
+            visit.close()
+
+
+def figure_eight():
+    """The lab's figure-eight, 1.2 (sin t, sin t cos t), as a ddg.smooth curve: the reference for its
+    vertices and kappa (the lab samples it at t_k = 2 pi (k + 1/2) / n, its crossing between two vertices)."""
+    return SmoothCurve(lambda t: (1.2 * np.sin(t), 0.6 * np.sin(2 * t)), lambda t: (1.2 * np.cos(t), 1.2 * np.cos(2 * t)),
+                       lambda t: (-1.2 * np.sin(t), -2.4 * np.sin(2 * t)), name="figure-eight")
+
+
+def test_every_preset_is_ddgs(browser, book):
+    """Each preset's vertices, and the smooth curve's kappa(t_i) that the chart draws, against ddg:
+    the circle, ellipse and blob of ddg.explore.SHAPES, chapter 5's polygons of ddg.explore.POLYGONS
+    and the figure-eight; every vertex's colour is ddg.scene's ramp (in the page's 65 steps) and the
+    flows' colours are ddg.explore's; and the figure-eight's turning number is 0."""
+    smooth = {"regular": (SHAPES["circle"], 0.0), "ellipse": (SHAPES["ellipse"], 0.0),
+              "blob": (SHAPES["non-convex blob"], 0.0), "eight": (figure_eight(), 0.5)}
+    polygons = {"star": POLYGONS["non-convex star"], "pentagon": POLYGONS["convex pentagon"]}
+    visit = Visit(browser, book, PAGE)
+    try:
+        for name, n in [(name, n) for name in PRESETS for n in (7, 64)]:
+            visit.page.goto(f"{book}{PAGE}?lab={name}&n={n}")
+            state = visit.page.evaluate("""() => { const lab = document.querySelector('.ddg-lab').lab;
+                return {vertices: lab.vertices, kappa: lab.kappa, fills: lab.circles.map(c => c.getAttribute('fill'))}; }""")
+            if name in smooth:
+                curve, shift = smooth[name]
+                t = 2 * np.pi * (np.arange(n) + shift) / n
+                assert np.allclose(state["vertices"], curve.position(t), rtol=0, atol=1e-15), name
+                assert np.allclose(state["kappa"], curve.curvature(t), rtol=1e-14, atol=1e-14), name
+            else:
+                assert np.allclose(state["vertices"], polygons[name].vertices, rtol=0, atol=1e-15) and state["kappa"] is None
+            k = ddg.DiscreteCurve(np.array(state["vertices"])).curvature("angle")
+            levels = np.round(64 * np.clip(0.5 + k / (2 * np.abs(k).max()), 0, 1)) / 64  # the page's 65 steps
+            assert state["fills"] == [ramp(RAMP, level) for level in levels], name  # ddg.scene's ramp on RAMP
+        assert ddg.DiscreteCurve(figure_eight().sample(64).vertices).turning_number == 0
+        visit.page.get_by_role("button", name="Flow this shape").click()
+        strokes = visit.page.evaluate("() => document.querySelector('.ddg-lab').lab.flows.runs.map(r => [r.kind, r.path.getAttribute('stroke')])")
+        assert dict(strokes) == FLOW_COLORS
+        assert not visit.outside and not visit.failed and not visit.unexpected_console()
     finally:
-        context.close()
+        visit.close()
