@@ -167,7 +167,8 @@ def test_every_control_of_the_lab_against_ddg(browser, book, view):
     """From a chapter's link (?lab=star&kind=tangent&arrows=1): the preset, the arrows and the line on
     the selected vertex are ddg's; a preset with n, adding, removing and undoing by keys and by the
     buttons, drawing a polygon, dragging by mouse or finger; then the three flows, stepped and
-    played to their stop rules, as ddg.flow runs them; axe finds nothing serious at the end."""
+    played to their stop rules, as ddg.flow runs them; axe finds nothing serious at the end, and the
+    page printed shows the polygon and the flows as they are, without the controls."""
     from test_site import AXE_OPTIONS, axe_violations
 
     phone = view.startswith("phone")
@@ -280,6 +281,10 @@ def test_every_control_of_the_lab_against_ddg(browser, book, view):
         assert lab.get_by_role("button", name="Play").get_attribute("aria-pressed") == "false"
 
         assert not axe_violations(visit, AXE_OPTIONS), view
+        page.emulate_media(media="print")  # printed: the polygon and the flows as they are now, no controls
+        assert lab.locator("svg.ddg-lab-svg").is_visible() and lab.locator(".ddg-lab-flows svg").first.is_visible()
+        assert lab.locator(".ddg-summary").first.is_visible() and not lab.locator(".ddg-controls").first.is_visible()
+        assert lab.locator("svg.ddg-lab-svg circle").count() == 24
         assert not visit.outside and not visit.failed and not visit.unexpected_console()
     finally:
         visit.close()
