@@ -44,6 +44,10 @@ def pages(site):
                   and p.name not in ("genindex.html", "search.html"))
 
 
+class Server(http.server.ThreadingHTTPServer):
+    request_queue_size = 64  # not 5: a page asks for its fonts, images and scripts at once
+
+
 @pytest.fixture(scope="session")
 def servers():
     """One loopback server per built site: {site: base URL}."""
@@ -56,7 +60,7 @@ def servers():
     for site, folder in SITES.items():
         if not (folder / "index.html").exists():
             pytest.fail(f"no {site} site in {folder}: run `make test` (it builds both)")
-        httpd = http.server.ThreadingHTTPServer(("127.0.0.1", 0), functools.partial(Quiet, directory=str(folder)))
+        httpd = Server(("127.0.0.1", 0), functools.partial(Quiet, directory=str(folder)))
         threading.Thread(target=httpd.serve_forever, daemon=True).start()
         urls[site] = f"http://127.0.0.1:{httpd.server_port}/"
         running.append(httpd)
@@ -74,11 +78,13 @@ def _probes():
 
 
 PROBES = _probes()
-SCROLL_THROUGH = PROBES["SCROLL_THROUGH"]
+SCROLL_THROUGH, WAITING = PROBES["SCROLL_THROUGH"], PROBES["WAITING"]
 # A section out of view is not drawn (ddg-book.css: content-visibility), so what looks at the whole
 # page at once (axe's colour contrast, a full-page screenshot) has every section drawn.
 EVERY_SECTION = "* { content-visibility: visible !important; }"
-LOADED = PROBES["LOADED"]
+# Loaded: every figure shown and every explorer, and the fonts (else: what is still waiting)
+PENDING = f"""() => ({WAITING})().map(e => e.outerHTML.slice(0, 160))
+    .concat(document.fonts.status === "loaded" ? [] : ["fonts: " + document.fonts.status])"""
 
 
 class Visit:
@@ -110,8 +116,11 @@ class Visit:
         self.page.goto(url, wait_until="load")
         if redirect:  # a redirect page (the site's index.html): the reader lands on its target
             self.page.wait_for_url(urllib.parse.urljoin(url, redirect.group(1)), wait_until="load")
-        self.page.evaluate(SCROLL_THROUGH)
-        self.page.wait_for_function(LOADED, timeout=60_000)
+        self.page.evaluate(SCROLL_THROUGH, WAITING)
+        try:
+            self.page.wait_for_function(f"() => !({PENDING})().length", timeout=60_000)
+        except sync_api.TimeoutError:
+            raise AssertionError(f"{path}: not loaded after a minute: {self.page.evaluate(PENDING)}") from None
         self.page.add_style_tag(content=EVERY_SECTION)
         self.show(view)
 
