@@ -25,7 +25,8 @@ $(ENV): requirements.txt requirements-build.txt pyproject.toml tools/env.py
 $(KERNEL): tools/ipython_kernel_config.py $(ENV)
 	@mkdir -p $(@D) && cp tools/ipython_kernel_config.py $@
 
-# MathJax, pinned: Node typesets the formulas with it; the book serves its fonts (tools/vendor.py).
+# MathJax and polygon-clipping, pinned: Node typesets the formulas with MathJax, the book serves its
+# fonts; the lab of chapter 10 unites polygons with polygon-clipping (tools/vendor.py).
 $(VENDOR): $(ENV) tools/vendor.py
 	$(PY) tools/vendor.py $(VENV)/vendor $(VENV)/node_modules
 

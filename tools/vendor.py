@@ -1,13 +1,14 @@
 """Fetch the front-end files the book is built with: `python tools/vendor.py DEST MODULES`.
 
-A pinned npm package, downloaded from the npm registry (or $NPM_REGISTRY), checked by SHA-256,
-and unpacked with the standard library only, so the set-up works on Linux and macOS: MathJax 3
-for Node (mathjax-full). Its JavaScript goes into MODULES (the Makefile uses .venv/node_modules),
+Pinned npm packages, downloaded from the npm registry (or $NPM_REGISTRY), checked by SHA-256,
+and unpacked with the standard library only, so the set-up works on Linux and macOS. MathJax 3
+for Node (mathjax-full): its JavaScript goes into MODULES (the Makefile uses .venv/node_modules),
 where tools/sphinx_math.py runs it to typeset every formula when the book is built; its woff-v2
 fonts go into DEST/mathjax/fonts. DEST (.venv/vendor) is listed in `html_static_path` in
 _config.yml, so the book build copies it into _build/html/_static: the pages load the fonts, and
-no MathJax script. (The explorers need no widget embedder: the book's own player draws them,
-book/_assets/ddg-player.js.)
+no MathJax script. polygon-clipping 0.15.7 (MIT): the union of polygons with which the lab of
+chapter 10 measures an inflated region, in DEST/polygon-clipping. (The explorers need no widget
+embedder: the book's own player draws them, book/_assets/ddg-player.js.)
 """
 
 import fnmatch
@@ -30,6 +31,10 @@ PACKAGES = [
        "mathjax/fonts"),
       ("package/js/*.js", "package/", "MODULES", "mathjax-full"),
       ("package/LICENSE", "package/", "MODULES", "mathjax-full")]),
+    # the union of polygons with which the lab of chapter 10 measures an inflated region
+    ("polygon-clipping/-/polygon-clipping-0.15.7.tgz", "23bdea671a65011107d91536881f527c8e2e6820f59e4bc1408a94d7cc11d5b7",
+     [("package/dist/polygon-clipping.umd.min.js", "package/dist/", "DEST", "polygon-clipping"),
+      ("package/LICENSE.md", "package/", "DEST", "polygon-clipping")]),
 ]
 
 

@@ -1,15 +1,21 @@
 /* The lab on the page (book/10_explorers): a polygon the reader shapes (presets, drawing, dragging,
  * arrow keys, adding and removing vertices, undo), coloured by a discrete curvature, with the
- * gradient of length as arrows, the curvature along the polygon beside the smooth curve's, and the
- * three curve-shortening flows run side by side from it. Everything is computed by ddg-lab.js
- * (ddg's formulas). Loaded only where there is a .ddg-lab (tools/sphinx_assets.py). Data
- * coordinates have y up; the SVG is drawn with y flipped. The address can choose the start:
- * ?lab=star&kind=tangent&n=24&arrows=1 (the chapters link to the lab so).
+ * gradient of length as arrows, the curvature along the polygon beside the smooth curve's, the
+ * polygon inflated by eps (the formula's area beside the area of the region, measured as a union of
+ * polygons by polygon-clipping), and the three curve-shortening flows run side by side from it.
+ * Everything else is computed by ddg-lab.js (ddg's formulas). Loaded only where there is a .ddg-lab
+ * (tools/sphinx_assets.py). Data coordinates have y up; the SVG is drawn with y flipped. The address
+ * can choose the start: ?lab=star&kind=tangent&n=24&arrows=1&inflate=minkowski&eps=0.4 (the
+ * chapters link to the lab so).
  */
 (function () {
   "use strict";
   var SVG = "http://www.w3.org/2000/svg", RAMP = ["#2563eb", "#9ca3af", "#dc2626"];  // ddg.scene.RAMP
   var FLOW_COLORS = {angle: "#3b82f6", sine: "#f59e0b", tangent: "#10b981"};       // ddg.explore.FLOW_COLORS
+  var INFLATIONS = {minkowski: ["Minkowski sum", "#f59e0b", "A₀ + εL + ε²/2 Σ ψᵢ"],       // ddg.explore's names and colours
+                    offset: ["offset with kites", "#10b981", "A₀ + εL + ε² Σ tan(ψᵢ/2)"]};
+  var ARC_STEP = Math.PI / 360, MEASURED_UP_TO = 300;  // chords of at most 0.5 degrees; the union's cost grows with
+  // the square of the rectangles that overlap (a concave stretch inflated by more than its radius)
   function polar(r, dr, ddr) {  // ddg.smooth.polar, clockwise: r(t) (cos t, -sin t) and its derivatives
     return function (t) {
       var c = Math.cos(t), s = Math.sin(t), a = r(t), b = dr(t), d = ddr(t);
@@ -75,6 +81,36 @@
     b.textContent = text;
     return b;
   }
+  /* The pieces of the polygon inflated by eps (lecture §3.4), for a clockwise polygon: the rectangle
+   * each edge e_{i+1/2} sweeps as it moves out by eps along N_{i+1/2}, and at each convex corner
+   * (psi_i > 0) the disk sector of angle psi_i (Minkowski; its arc as chords of at most ARC_STEP) or
+   * the kite up to where the two moved edges meet, v_i + eps (N_{i-1/2} + tan(psi_i/2) T_{i-1/2})
+   * (offset): the corners of ddg's DiscreteCurve.inflate. The polygon and its pieces, united, are the
+   * region; at a reflex corner (psi_i < 0) the two rectangles overlap instead. */
+  function pieces(curve, eps, method) {
+    var v = curve.vertices, n = v.length, N = curve.normals, T = curve.tangents, psi = curve.turning_angles;
+    var at = function (p, d, s) { return [p[0] + s * d[0], p[1] + s * d[1]]; };
+    var rectangles = v.map(function (p, i) { var q = v[(i + 1) % n]; return [p, q, at(q, N[i], eps), at(p, N[i], eps)]; });
+    var corners = [];
+    v.forEach(function (p, i) {
+      var a = N[(i + n - 1) % n], b = N[i], m = Math.ceil(psi[i] / ARC_STEP), a0 = Math.atan2(a[1], a[0]), ring = [p, at(p, a, eps)];
+      if (!(psi[i] > 0)) return;
+      if (method === "offset") {
+        var Tp = T[(i + n - 1) % n], t = curve.tan_half_psi[i];
+        corners.push(ring.concat([at(p, [a[0] + t * Tp[0], a[1] + t * Tp[1]], eps), at(p, b, eps)]));
+        return;
+      }
+      for (var k = 1; k < m; k++) ring.push(at(p, [Math.cos(a0 - psi[i] * k / m), Math.sin(a0 - psi[i] * k / m)], eps));
+      corners.push(ring.concat([at(p, b, eps)]));
+    });
+    return {rectangles: rectangles, corners: corners};
+  }
+  function regionArea(region) {  // a multipolygon of polygon-clipping: outer rings counter-clockwise, holes clockwise
+    return region.reduce(function (total, polygon) {
+      return polygon.reduce(function (sum, ring) { return sum + window.ddgLab.signed_area_ccw(ring.slice(0, -1)); }, total);
+    }, 0);
+  }
+
   function bounds(points) {
     var xs = points.map(function (p) { return p[0]; }), ys = points.map(function (p) { return p[1]; });
     return [Math.min.apply(null, xs), Math.min.apply(null, ys), Math.max.apply(null, xs), Math.max.apply(null, ys)];
@@ -124,12 +160,22 @@
     var add = button(edits, "Add vertex", "a vertex in the middle of the edge after the selected vertex (key: Insert or +)");
     var remove = button(edits, "Remove vertex", "remove the selected vertex (key: Delete or -)");
     var undo = button(edits, "Undo", "undo the last change (key: Ctrl+Z)");
+    var inflating = element("div", {class: "ddg-controls"}, root);
+    this.method = control(inflating, "inflate", element("select", {}, null));
+    element("option", {value: ""}, this.method).textContent = "no";
+    Object.keys(INFLATIONS).forEach(function (m) { element("option", {value: m}, self.method).textContent = INFLATIONS[m][0]; });
+    this.method.value = INFLATIONS[query.get("inflate")] ? query.get("inflate") : "";
+    this.eps = control(inflating, "by ε", element("input", {type: "range", min: 0, max: 1, step: 0.01, value: query.get("eps") || 0.2}));
+    this.epsShown = element("output", {}, this.eps.parentNode);
     this.svg = element("svg", {class: "ddg-panel ddg-lab-svg", width: 360, height: 360, role: "group",
                                "aria-label": "the polygon: each vertex is a button; arrow keys move it, Page Up and Page Down go to the previous and next vertex, Insert adds a vertex after it, Delete removes it"}, root);
+    this.region = element("path", {"fill-opacity": 0.25, stroke: "none", class: "ddg-lab-region"}, this.svg);
+    this.pieces = element("path", {"fill-opacity": 0.15, "stroke-width": 0.75, "vector-effect": "non-scaling-stroke", class: "ddg-lab-pieces"}, this.svg);
     this.path = element("path", {fill: "none", stroke: "currentColor", "stroke-width": 1.5, "vector-effect": "non-scaling-stroke"}, this.svg);
     this.arrowPath = element("path", {fill: "none", stroke: "#7c3aed", "stroke-width": 1.5, "vector-effect": "non-scaling-stroke", class: "ddg-lab-arrows"}, this.svg);
     this.dots = element("g", {}, this.svg);
     this.summary = element("p", {class: "ddg-summary", "aria-live": "polite"}, root);
+    this.inflation = element("p", {class: "ddg-summary ddg-lab-inflation", "aria-live": "polite"}, root);
     this.detail = element("p", {class: "ddg-detail ddg-lab-detail", "aria-live": "polite"}, root);
     this.chart = element("svg", {class: "ddg-panel ddg-lab-chart", viewBox: "0 0 360 120", width: 360, height: 120, "aria-hidden": "true"}, root);
     this.caption = element("p", {class: "ddg-detail ddg-lab-caption"}, root);
@@ -141,6 +187,8 @@
     reset.addEventListener("click", function () { self.reset(); });
     this.kind.addEventListener("change", function () { self.update(); });
     this.arrows.addEventListener("change", function () { self.update(); });
+    this.method.addEventListener("change", function () { self.update(); });
+    this.eps.addEventListener("input", function () { self.update(); });
     this.draw.addEventListener("click", function () { self.toggleDrawing(); });
     add.addEventListener("click", function () { self.add(self.selected); });
     remove.addEventListener("click", function () { self.remove(self.selected); });
@@ -317,7 +365,51 @@
     });
     s.textContent = parts.join(" ");
     this.arrowPath.setAttribute("d", gradient && this.arrows.checked ? this.arrowsPath(gradient) : "");
+    this.inflate(this.drawing ? null : curve);
     this.describe(curve, ks, gradient);
+  };
+
+  /* The polygon inflated by eps: its pieces and the formula's area at once; the region, their union,
+   * measured when the hand stops (a drag asks for it again at every frame). */
+  Lab.prototype.inflate = function (curve) {
+    var method = this.method.value, eps = Number(this.eps.value), p = this.inflation, self = this, formula;
+    this.epsShown.textContent = eps.toFixed(2);
+    this.eps.disabled = !method;
+    clearTimeout(this.measuring);
+    this.region.setAttribute("d", "");
+    this.pieces.setAttribute("d", "");
+    delete p.dataset.formula; delete p.dataset.measured;
+    p.textContent = "";
+    if (!method || !curve) return;
+    var name = INFLATIONS[method][0], color = INFLATIONS[method][1];
+    try {
+      var turns = curve.turning_number, simple = "the formulas are for a simple clockwise polygon, and this one has turning number ";
+      if (Math.abs(turns) !== 1) throw new Error(simple + turns);
+      formula = curve.inflated_area(eps, method);  // refuses a counter-clockwise polygon, saying why
+      if (turns !== 1) throw new Error(simple + turns);
+    } catch (e) { p.textContent = "No inflation: " + e.message + "."; return; }
+    var parts = eps > 0 ? pieces(curve, eps, method) : {rectangles: [], corners: []}, said = "Inflated by ε = " + eps.toFixed(2) + " (" + name + "): the formula " +
+      INFLATIONS[method][2] + " gives " + short(formula);
+    p.dataset.formula = formula;
+    this.pieces.setAttribute("fill", color);
+    this.pieces.setAttribute("stroke", color);
+    this.pieces.setAttribute("d", parts.rectangles.concat(parts.corners).map(function (r) { return pathOf(r, true); }).join(""));
+    if (curve.vertices.length > MEASURED_UP_TO) { p.textContent = said + "; the region is measured for polygons of up to " + MEASURED_UP_TO + " vertices."; return; }
+    p.textContent = said + "; measuring the region …";
+    this.measuring = setTimeout(function () {
+      var region, area;
+      try {
+        region = window.polygonClipping.union.apply(null, [[curve.vertices]].concat(parts.rectangles.concat(parts.corners).map(function (r) { return [r]; })));
+        area = regionArea(region);
+      } catch (e) { p.textContent = said + "; the region could not be measured (" + e.message + ")."; return; }
+      p.dataset.measured = area;
+      self.region.setAttribute("fill", color);
+      self.region.setAttribute("d", region.map(function (polygon) {
+        return polygon.map(function (ring) { return pathOf(ring.slice(0, -1), true); }).join("");
+      }).join(""));
+      p.textContent = said + "; the region (shaded), the polygon with these pieces united, measures " + short(area) +
+        ": formula − region = " + Number((formula - area).toPrecision(2)) + ".";
+    }, this.dragging !== undefined ? 150 : 0);
   };
 
   Lab.prototype.arrowsPath = function (g) {  // grad L at each vertex, the longest 0.2 of the view

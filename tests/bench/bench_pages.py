@@ -10,7 +10,8 @@ transferred (as sent: compressed, with headers), the first contentful paint, the
 formula is final (typeset and its fonts arrived; on a page with no math, nothing), and the layout
 shift score (0 when nothing moves as the page arrives). Then the bytes of the heaviest page by
 asset, the same pages on a desktop (1280 x 900, nothing slowed), and the frame times of chapter
-10's lab on the phone (a dragged vertex; the three flows playing) for n = 100, 500 and 2000.
+10's lab on the phone (a dragged vertex, without and with the polygon inflated; the region
+measured when the drag ends; the three flows playing) for n = 100, 300, 500 and 2000.
 
 A benchmark: timings are noisy (the machine is shared), so it reports and asserts nothing; the
 browser tests assert what is deterministic (tests/browser/test_site.py: bytes, scripts, math).
@@ -149,6 +150,22 @@ LAB_FRAMES = """async (count) => {
         await frame(); await frame();
         drag.push(performance.now() - t);
     }
+    const inflated = [], measured = [], p = lab.inflation;  // inflated as a Minkowski sum by 0.2
+    lab.method.value = "minkowski"; lab.eps.value = 0.2; lab.dragging = 3;
+    for (let k = 0; k < count; k++) {  // dragged: the pieces and the formula at once, the region later
+        const t = performance.now(), v = lab.vertices[3];
+        lab.move(3, [v[0] + (k % 2 ? -0.01 : 0.01), v[1]]);
+        await frame(); await frame();
+        inflated.push(performance.now() - t);
+    }
+    lab.dragging = undefined;
+    for (let k = 0; k < 5 && lab.vertices.length <= 300; k++) {  // let go: until the region is measured
+        const t = performance.now(), v = lab.vertices[3];
+        lab.move(3, [v[0] + (k % 2 ? -0.01 : 0.01), v[1]]);
+        while (!("measured" in p.dataset)) await frame();
+        measured.push(performance.now() - t);
+    }
+    lab.method.value = ""; lab.update();
     lab.flows.begin();
     for (let k = 0; k < count; k++) {
         const t = performance.now(), until = t + 8;
@@ -158,22 +175,28 @@ LAB_FRAMES = """async (count) => {
         flow.push(performance.now() - t);
     }
     const median = xs => xs.sort((a, b) => a - b)[xs.length >> 1];
-    return {drag: median(drag), flow: median(flow), steps: lab.flows.runs.map(r => r.record.length - 1)};
+    return {drag: median(drag), flow: median(flow), steps: lab.flows.runs.map(r => r.record.length - 1),
+            inflated: median(inflated), measured: measured.length ? median(measured) : null};
 }"""
 
 
 def lab_frames(browser, base):
-    """The lab's frame times on a phone with its CPU 4x slower, for n = 100, 500 and 2000."""
+    """The lab's frame times on a phone with its CPU 4x slower, for n = 100, 300, 500 and 2000: a drag, a
+    drag with the polygon inflated, the region measured when the hand stops (up to 300 vertices), and
+    the flows playing."""
     print("\nthe lab on a phone, CPU 4x slower: median of 30 frames (ms; two animation frames each, 33 ms at 60 Hz)")
-    print(f"{'n':>6} {'drag a vertex':>14} {'flows playing':>14} {'flow steps in 30 frames':>24}")
-    for n in (100, 500, 2000):
+    print(f"{'n':>6} {'drag a vertex':>14} {'drag, inflated':>15} {'region measured':>16} {'flows playing':>14} "
+          f"{'flow steps in 30 frames':>24}")
+    for n in (100, 300, 500, 2000):
         context = browser.new_context(**PHONE)
         page = context.new_page()
         page.goto(f"{base}book/10_explorers.html?lab=blob&n={n}", wait_until="load")
         cdp = context.new_cdp_session(page)
         cdp.send("Emulation.setCPUThrottlingRate", {"rate": 4})
         r = page.evaluate(LAB_FRAMES, 30)
-        print(f"{n:>6} {r['drag']:>14.1f} {r['flow']:>14.1f} {'/'.join(map(str, r['steps'])):>24}")
+        region = "not measured" if r["measured"] is None else f"{r['measured']:.1f}"
+        print(f"{n:>6} {r['drag']:>14.1f} {r['inflated']:>15.1f} {region:>16} {r['flow']:>14.1f} "
+              f"{'/'.join(map(str, r['steps'])):>24}")
         context.close()
 
 

@@ -14,10 +14,10 @@ import threading
 
 import numpy as np
 import pytest
-from browser_helpers import SITES, Visit
+from browser_helpers import EVERY_SECTION, SITES, Visit
 
 import ddg
-from ddg.explore import FLOW_COLORS, POLYGONS, SHAPES
+from ddg.explore import FLOW_COLORS, POLYGONS, SHAPES, measured_region
 from ddg.flow import flow
 from ddg.scene import RAMP, ramp
 from ddg.smooth import SmoothCurve
@@ -117,7 +117,7 @@ def test_the_lab_scripts_load_only_on_the_labs_page(browser, book):
         visit = Visit(browser, book, path)
         try:
             scripts = visit.page.evaluate("() => [...document.scripts].map(s => s.src)")
-            for name in ("ddg-lab.js", "ddg-lab-page.js"):
+            for name in ("ddg-lab.js", "ddg-lab-page.js", "polygon-clipping.umd.min.js"):
                 assert any(s.endswith("/" + name) or f"/{name}?" in s for s in scripts) == wanted, (path, name)
         finally:
             visit.close()
@@ -303,11 +303,13 @@ def test_each_chapters_link_opens_the_lab_with_its_preset(browser, book):
         try:
             link = page.locator("a.ddg-lab-link")
             assert link.count() == 1, chapter
-            query = dict(re.findall(r"[?&](\w+)=([\w-]+)", link.get_attribute("href")))
+            query = dict(re.findall(r"[?&](\w+)=([\w.-]+)", link.get_attribute("href")))
             link.click()
             page.wait_for_url(re.compile(r"10_explorers\.html\?"))
-            shape, kind, n, arrows = page.evaluate("""() => { const lab = document.querySelector('.ddg-lab').lab;
-                return [lab.shape.value, lab.kind.value, lab.vertices.length, lab.arrows.checked]; }""")
+            shape, kind, n, arrows, method, eps = page.evaluate("""() => { const lab = document.querySelector('.ddg-lab').lab;
+                return [lab.shape.value, lab.kind.value, lab.vertices.length, lab.arrows.checked, lab.method.value,
+                        lab.eps.value]; }""")
+            assert method == query.get("inflate", "") and ("eps" not in query or eps == query["eps"]), chapter
             assert shape == PRESETS[query["lab"]], (chapter, shape)
             assert kind == query.get("kind", "angle") and arrows == (query.get("arrows") == "1"), chapter
             assert "n" not in query or n == int(query["n"]), chapter
@@ -351,6 +353,113 @@ def test_every_preset_is_ddgs(browser, book):
         visit.page.get_by_role("button", name="Flow this shape").click()
         strokes = visit.page.evaluate("() => document.querySelector('.ddg-lab').lab.flows.runs.map(r => [r.kind, r.path.getAttribute('stroke')])")
         assert dict(strokes) == FLOW_COLORS
+        assert not visit.outside and not visit.failed and not visit.unexpected_console()
+    finally:
+        visit.close()
+
+
+def inflation_is_ddgs(page, curve):
+    """The inflation line against ddg and shapely: the formula is ddg's inflated_area; the region the
+    lab measures (its polygon-clipping union) is shapely's, to the chords of both (the lab's of half
+    a degree, shapely's of 90/256 degrees, each missing a fraction h^2/6 of a sector); the difference
+    is said to two digits."""
+    page.wait_for_function("() => 'measured' in document.querySelector('.ddg-lab-inflation').dataset")
+    method, eps, text, data = page.evaluate("""() => { const lab = document.querySelector('.ddg-lab').lab, p = lab.inflation;
+        return [lab.method.value, Number(lab.eps.value), p.textContent, Object.assign({}, p.dataset)]; }""")
+    formula, measured = float(data["formula"]), float(data["measured"])
+    assert abs(formula - curve.inflated_area(eps, method)) <= 1e-12 * abs(formula), (method, eps)
+    shapely_area = measured_region(curve, eps, method).area
+    chords = (np.pi / 360) ** 2 / 6 * eps**2 / 2 * curve.turning_angles.clip(0).sum() if method == "minkowski" else 0
+    assert abs(measured - shapely_area) <= 2 * chords + 1e-12 * shapely_area, (method, eps, measured - shapely_area, chords)
+    said = re.search(r"by ε = (\S+) .* formula − region = (\S+)\.$", text)
+    assert said and float(said[1]) == eps and float(said[2]) == float(f"{formula - measured:.2g}"), text
+    return formula - measured
+
+
+@pytest.mark.parametrize("view", ["desktop, light, mouse", "phone, dark, touch"])
+def test_inflation_in_the_lab_against_ddg_and_shapely(browser, book, view):
+    """From chapter 5's link (?lab=star&inflate=minkowski&eps=0.2): the star inflated both ways at the
+    exercise's eps, moved by the keys; the formula is ddg's and the region is shapely's; the offset
+    is exact on the star and the Minkowski sum misses by eps^2 times a constant. On random simple
+    polygons the region is the Minkowski sum shapely computes, whatever their reflex corners; a
+    drag re-measures the region when it ends; a figure-eight, a counter-clockwise polygon and a
+    polygon of more than 300 vertices are refused in words; axe finds nothing serious."""
+    from test_site import AXE_OPTIONS, axe_violations
+
+    phone = view.startswith("phone")
+    visit = Visit(browser, book, PAGE + "?lab=star&inflate=minkowski&eps=0.2", touch=phone)  # the network cut
+    page = visit.page
+    if phone:
+        visit.show("phone")
+        page.emulate_media(color_scheme="dark")
+    try:
+        lab = page.locator(".ddg-lab")
+        star = POLYGONS["non-convex star"]
+        slider = lab.locator("input[type=range]")
+        missed = {}
+        for method, name in (("minkowski", "Minkowski sum"), ("offset", "offset with kites")):
+            lab.locator("select").nth(2).select_option(label=name)
+            for eps in (0.2, 0.4, 0.8):
+                slider.evaluate("(e, eps) => { e.value = eps; e.dispatchEvent(new Event('input')); }", eps)
+                missed[method, eps] = inflation_is_ddgs(page, star)
+            slider.focus()
+            page.keyboard.press("ArrowLeft")  # the keys move eps by 0.01
+            assert slider.input_value() == "0.79"
+            inflation_is_ddgs(page, star)
+        assert abs(missed["minkowski", 0.4] / missed["minkowski", 0.2] - 4) < 1e-3
+        assert abs(missed["minkowski", 0.8] / missed["minkowski", 0.4] - 4) < 1e-3
+        assert all(abs(missed["offset", eps]) < 1e-12 for eps in (0.2, 0.4, 0.8))
+        assert lab.locator(".ddg-lab-region").get_attribute("d") and lab.locator(".ddg-lab-pieces").get_attribute("d")
+
+        # random simple polygons (star-shaped, 5 to 40 vertices, clockwise): the Minkowski region is shapely's
+        lab.locator("select").nth(2).select_option(label="Minkowski sum")
+        rng = np.random.default_rng(24)
+        for _ in range(12):
+            n = int(rng.integers(5, 41))
+            theta = np.sort(rng.uniform(0, 2 * np.pi, n))
+            radii = rng.uniform(0.3, 1.0, n)
+            polygon = np.c_[radii * np.cos(theta), -radii * np.sin(theta)]
+            eps = round(float(rng.uniform(0.01, 1.0)), 2)
+            page.evaluate("""([v, eps]) => { const lab = document.querySelector('.ddg-lab').lab;
+                lab.vertices = v; lab.eps.value = eps; lab.rebuild(); }""", [polygon.tolist(), eps])
+            inflation_is_ddgs(page, ddg.DiscreteCurve(polygon))
+
+        # a drag: the pieces follow at once, the region is measured again when the hand stops
+        page.goto(f"{book}{PAGE}?lab=pentagon&inflate=offset&eps=0.3")
+        page.add_style_tag(content=EVERY_SECTION)  # as the visit's first load: every section drawn, for axe
+        visit.show("phone" if phone else "desktop")
+        if phone:
+            page.emulate_media(color_scheme="dark")
+        pieces = lab.locator(".ddg-lab-pieces").get_attribute("d")
+        dot = lab.locator("circle").nth(2)
+        dot.scroll_into_view_if_needed()
+        b = dot.bounding_box()
+        x, y = b["x"] + b["width"] / 2, b["y"] + b["height"] / 2
+        if phone:
+            touch_drag(page, x, y, 15, 10)
+        else:
+            page.mouse.move(x, y)
+            page.mouse.down()
+            for k in range(1, 6):
+                page.mouse.move(x + 3 * k, y + 2 * k)
+            page.mouse.up()
+        assert lab.locator(".ddg-lab-pieces").get_attribute("d") != pieces
+        dragged = summary_is_ddgs(page)
+        assert not np.allclose(dragged, POLYGONS["convex pentagon"].vertices)
+        assert abs(inflation_is_ddgs(page, ddg.DiscreteCurve(dragged))) < 1e-12  # still convex: exact
+
+        # refused in words: the figure-eight, a counter-clockwise polygon, more than 300 vertices
+        inflation = lab.locator(".ddg-lab-inflation")
+        lab.locator("select").first.select_option("figure-eight")
+        assert "turning number 0" in inflation.inner_text()
+        lab.locator("select").first.select_option("regular n-gon")
+        page.evaluate("() => { const lab = document.querySelector('.ddg-lab').lab; lab.vertices.reverse(); lab.rebuild(); }")
+        assert "counter-clockwise" in inflation.inner_text() and "reverse it" in inflation.inner_text()
+        lab.locator("input[type=number]").fill("301")
+        lab.locator("input[type=number]").dispatch_event("change")
+        assert "measured for polygons of up to 300 vertices" in inflation.inner_text()
+        assert not lab.locator(".ddg-lab-region").get_attribute("d")
+        assert not axe_violations(visit, AXE_OPTIONS), view
         assert not visit.outside and not visit.failed and not visit.unexpected_console()
     finally:
         visit.close()
