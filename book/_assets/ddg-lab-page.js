@@ -187,8 +187,8 @@
     reset.addEventListener("click", function () { self.reset(); });
     this.kind.addEventListener("change", function () { self.update(); });
     this.arrows.addEventListener("change", function () { self.update(); });
-    this.method.addEventListener("change", function () { self.update(); });
-    this.eps.addEventListener("input", function () { self.update(); });
+    this.method.addEventListener("change", function () { self.fit(); });
+    this.eps.addEventListener("input", function () { self.fit(); });
     this.draw.addEventListener("click", function () { self.toggleDrawing(); });
     add.addEventListener("click", function () { self.add(self.selected); });
     remove.addEventListener("click", function () { self.remove(self.selected); });
@@ -254,6 +254,17 @@
     this.size = frame(this.svg, smooth ? Array.from({length: 96}, function (_, k) { return smooth.at(k * Math.PI / 48)[0]; }) : this.vertices);
     this.selected = 0;
     if (this.drawing) this.toggleDrawing();
+    if (this.method.value) this.fit(); else this.rebuild();
+  };
+
+  Lab.prototype.fit = function () {  // the view of the polygon and, when it is inflated, of its pieces
+    var points = this.vertices.slice(), eps = Number(this.eps.value), curve = null;
+    try { curve = new window.ddgLab.DiscreteCurve(this.vertices); } catch (e) { /* drawn as it is */ }
+    if (curve && this.method.value && eps > 0 && curve.signed_area > 0) {
+      var parts = pieces(curve, eps, this.method.value);
+      parts.rectangles.concat(parts.corners).forEach(function (r) { points = points.concat(r); });
+    }
+    if (points.length) this.size = frame(this.svg, points);
     this.rebuild();
   };
 
