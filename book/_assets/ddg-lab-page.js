@@ -1,5 +1,6 @@
 /* The lab on the page (book/10_explorers): a polygon the reader shapes (presets, drawing, dragging,
- * arrow keys, adding and removing vertices, undo), coloured by a discrete curvature, with the
+ * arrow keys, adding and removing vertices, undo), coloured by a discrete curvature (ddg's three, or
+ * the circle through three vertices of chapter 6's exercise, circle_curvature below), with the
  * gradient of length as arrows, the curvature along the polygon beside the smooth curve's, the
  * polygon inflated by eps (the formula's area beside the area of the region, measured as a union of
  * polygons by polygon-clipping), and the three curve-shortening flows run side by side from it.
@@ -105,6 +106,19 @@
     });
     return {rectangles: rectangles, corners: corners};
   }
+  /* Chapter 6's fourth curvature (its exercise ex-circle-curvature), which ddg leaves to the reader:
+   * the signed reciprocal radius of the circle through v_{i-1}, v_i, v_{i+1}, 2 sin(psi_i) / |v_{i+1} - v_{i-1}|
+   * (law of sines; positive where the polygon turns clockwise). The tests compare it with the grader's
+   * own, measured from the circle's centre. */
+  function circle_curvature(curve) {
+    var v = curve.vertices, n = v.length;
+    return curve.turning_angles.map(function (psi, i) {
+      var p = v[(i + n - 1) % n], q = v[(i + 1) % n], chord = Math.hypot(q[0] - p[0], q[1] - p[1]);
+      if (!(chord > 0)) throw new Error("no circle through vertices " + ((i + n - 1) % n) + ", " + i + " and " + ((i + 1) % n) + ": the first and the last coincide");
+      return 2 * Math.sin(psi) / chord;
+    });
+  }
+  var KINDS = window.ddgLab.CURVATURES.concat(["circle"]);  // the curvatures the lab shows: ddg's three and chapter 6's circle
   function regionArea(region) {  // a multipolygon of polygon-clipping: outer rings counter-clockwise, holes clockwise
     return region.reduce(function (total, polygon) {
       return polygon.reduce(function (sum, ring) { return sum + window.ddgLab.signed_area_ccw(ring.slice(0, -1)); }, total);
@@ -149,10 +163,10 @@
     Object.keys(SMOOTH).concat(Object.keys(POLYGONS)).forEach(function (s) { element("option", {value: s}, self.shape).textContent = s; });
     this.n = control(controls, "n", element("input", {type: "number", min: 3, max: 2000, step: 1, value: query.get("n") || root.dataset.n || 12}));
     this.kind = control(controls, "curvature", element("select", {}, null));
-    lab.CURVATURES.forEach(function (k) { element("option", {value: k}, self.kind).textContent = k; });
+    KINDS.forEach(function (k) { element("option", {value: k}, self.kind).textContent = k; });
     this.arrows = control(controls, "arrows of ∇L", element("input", {type: "checkbox"}, null));
     this.shape.value = SHORT_NAMES[query.get("lab")] || this.shape.value;
-    if (lab.CURVATURES.indexOf(query.get("kind")) >= 0) this.kind.value = query.get("kind");
+    if (KINDS.indexOf(query.get("kind")) >= 0) this.kind.value = query.get("kind");
     this.arrows.checked = query.get("arrows") === "1";
     var reset = button(controls, "Reset", "the preset again");
     this.draw = button(edits, "Draw", "click or tap in the plane to place vertices, clockwise; press again to finish");
@@ -175,8 +189,8 @@
     this.arrowPath = element("path", {fill: "none", stroke: "#7c3aed", "stroke-width": 1.5, "vector-effect": "non-scaling-stroke", class: "ddg-lab-arrows"}, this.svg);
     this.dots = element("g", {}, this.svg);
     this.summary = element("p", {class: "ddg-summary", "aria-live": "polite"}, root);
-    this.inflation = element("p", {class: "ddg-summary ddg-lab-inflation", "aria-live": "polite"}, root);
     this.detail = element("p", {class: "ddg-detail ddg-lab-detail", "aria-live": "polite"}, root);
+    this.inflation = element("p", {class: "ddg-summary ddg-lab-inflation", "aria-live": "polite"}, root);
     this.chart = element("svg", {class: "ddg-panel ddg-lab-chart", viewBox: "0 0 360 120", width: 360, height: 120, "aria-hidden": "true"}, root);
     this.caption = element("p", {class: "ddg-detail ddg-lab-caption"}, root);
     this.history = [];
@@ -347,12 +361,14 @@
    * largest |k|), so each attribute is written only where it changed. */
   Lab.prototype.update = function (moved) {
     var v = this.vertices, n = v.length, kind = this.kind.value, lab = window.ddgLab, curve = null, k = null, parts = [], s = this.summary;
-    var ks = {}, gradient = null;  // each curvature and the gradient of length, computed once for everything shown
+    var ks = this.ks = {}, gradient = null;  // each curvature and the gradient of length, once for everything shown
     this.path.setAttribute("d", pathOf(v, !this.drawing));
     ["turningNumber", "length", "signedArea"].forEach(function (name) { delete s.dataset[name]; });
     try { curve = new lab.DiscreteCurve(v); } catch (e) { parts.push("Not a polygon the lecture allows: " + e.message + "."); }
     if (curve) {
-      lab.CURVATURES.forEach(function (name) { try { ks[name] = curve.curvature(name); } catch (e) { ks[name] = e; } });
+      KINDS.forEach(function (name) {
+        try { ks[name] = name === "circle" ? circle_curvature(curve) : curve.curvature(name); } catch (e) { ks[name] = e; }
+      });
       gradient = curve.length_gradient();
       k = Array.isArray(ks[kind]) ? ks[kind] : null;
       if (!k) parts.push("No " + kind + " curvature: " + ks[kind].message + ".");
@@ -443,7 +459,7 @@
     if (curve) {
       var psi = curve.turning_angles[i], g = gradient[i];
       words.push("Vertex " + i + ": ψ = " + short(psi * 180 / Math.PI) + "° (" + (psi > 0 ? "turning clockwise" : psi < 0 ? "turning counter-clockwise" : "straight") + "); k: " +
-                 window.ddgLab.CURVATURES.map(function (name) {
+                 KINDS.map(function (name) {
                    return name + " " + (Array.isArray(ks[name]) ? short(ks[name][i]) : "undefined");
                  }).join(", ") + "; |\u2060∇L\u2060| = " + short(Math.hypot(g[0], g[1])) + ".");
     }

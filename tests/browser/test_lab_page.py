@@ -17,6 +17,8 @@ import pytest
 from browser_helpers import EVERY_SECTION, SITES, Visit
 
 import ddg
+from ddg.checks.comparing import CircleCurvature
+from ddg.checks.judge import Call
 from ddg.explore import FLOW_COLORS, POLYGONS, SHAPES, measured_region
 from ddg.flow import flow
 from ddg.scene import RAMP, ramp
@@ -143,12 +145,18 @@ def arrows_are_ddgs(state):
     assert np.allclose(drawn, scale * gradient, atol=1e-9 * scale), drawn - scale * gradient
 
 
+def circle_curvature(vertices):
+    """Chapter 6's circle curvature as its grader computes it, from the circle's centre."""
+    return CircleCurvature().expected(Call(({"polygon": np.asarray(vertices).tolist()},), "the lab's polygon"))
+
+
 def detail_is_ddgs(state):
-    """The line on the selected vertex: its psi in degrees and its three curvatures, as ddg gives them."""
+    """The line on the selected vertex: its psi in degrees and its four curvatures, as ddg (and chapter
+    6's grader, for the circle) gives them."""
     curve, i = ddg.DiscreteCurve(np.array(state["vertices"])), state["selected"]
     numbers = [float(x) for x in re.findall(r"-?\d+(?:\.\d+)?(?:e-?\d+)?", state["detail"].split(f"Vertex {i}:")[1])]
     want = [np.degrees(curve.turning_angles[i]), *(curve.curvature(k)[i] for k in ddg.CURVATURES),
-            np.linalg.norm(curve.length_gradient()[i])]
+            circle_curvature(curve.vertices)[i], np.linalg.norm(curve.length_gradient()[i])]
     assert np.allclose(numbers, [six(x) for x in want], rtol=1e-12, atol=1e-12), (state["detail"], want)
 
 
@@ -447,6 +455,9 @@ def test_inflation_in_the_lab_against_ddg_and_shapely(browser, book, view):
         dragged = summary_is_ddgs(page)
         assert not np.allclose(dragged, POLYGONS["convex pentagon"].vertices)
         assert abs(inflation_is_ddgs(page, ddg.DiscreteCurve(dragged))) < 1e-12  # still convex: exact
+        lab.locator("select").nth(2).select_option(label="Minkowski sum")  # short by the chords, at most
+        short = inflation_is_ddgs(page, ddg.DiscreteCurve(dragged))  # (pi/360)^2/6 = 1.3e-5 of the sectors
+        assert 0 < short <= 1.27e-5 * 0.3**2 / 2 * 2 * np.pi, short
 
         # refused in words: the figure-eight, a counter-clockwise polygon, more than 300 vertices
         inflation = lab.locator(".ddg-lab-inflation")
@@ -460,6 +471,42 @@ def test_inflation_in_the_lab_against_ddg_and_shapely(browser, book, view):
         assert "measured for polygons of up to 300 vertices" in inflation.inner_text()
         assert not lab.locator(".ddg-lab-region").get_attribute("d")
         assert not axe_violations(visit, AXE_OPTIONS), view
+        assert not visit.outside and not visit.failed and not visit.unexpected_console()
+    finally:
+        visit.close()
+
+
+def test_the_circle_curvature_is_the_graders(browser, book):
+    """The lab's fourth curvature, 2 sin(psi_i) / |v_{i+1} - v_{i-1}|, against chapter 6's grader, which
+    measures it from the circle's centre, on 400 random polygons (convex and not, unequal edges,
+    scales 1e-3 to 1e3) to 1e-9 of the largest |k|; where v_{i-1} = v_{i+1} there is no circle, and the page says so."""
+    visit = Visit(browser, book, PAGE + "?kind=circle")
+    page = visit.page
+    try:
+        rng = np.random.default_rng(6)
+        polygons = []
+        for k in range(400):
+            n = int(rng.integers(3, 40))
+            if k % 2:  # star-shaped, convex or not
+                theta = np.sort(rng.uniform(0, 2 * np.pi, n))
+                v = rng.uniform(0.2, 1, n)[:, None] * np.c_[np.cos(theta), -np.sin(theta)]
+            else:  # any polygon
+                v = rng.normal(size=(n, 2))
+            polygons.append((v + rng.normal(size=2)) * 10.0 ** rng.uniform(-3, 3))  # moved by its own size: the
+            # grader's centre comes from |v|^2 differences, which a far move would cancel
+        got = page.evaluate("""polygons => { const lab = document.querySelector('.ddg-lab').lab;
+            return polygons.map(v => { lab.vertices = v; lab.rebuild(); return lab.ks.circle; }); }""",
+                            [v.tolist() for v in polygons])
+        worst = 0.0
+        for v, k in zip(polygons, got, strict=True):
+            want = circle_curvature(v)
+            scale = np.abs(want).max()
+            assert np.allclose(k, want, rtol=1e-9, atol=1e-9 * scale), (v, np.array(k) - want)
+            worst = max(worst, float(np.max(np.abs(np.array(k) - want)) / scale))
+        print(f"\ncircle curvature, 400 polygons: largest difference {worst:.1e} of the largest |k|")
+        page.evaluate("() => { const lab = document.querySelector('.ddg-lab').lab; lab.vertices = [[0, 0], [1, 0], [0, 0.5], [1, 0]]; lab.rebuild(); }")
+        detail = page.locator(".ddg-lab-detail").inner_text()
+        assert "circle undefined" in detail and "No circle curvature: no circle through vertices" in page.locator(".ddg-lab .ddg-summary").first.inner_text()
         assert not visit.outside and not visit.failed and not visit.unexpected_console()
     finally:
         visit.close()
