@@ -232,8 +232,9 @@
     });
     ["pointerup", "pointercancel"].forEach(function (name) {
       self.svg.addEventListener(name, function () {
-        if (self.dragging !== undefined) self.update(self.dragging);  // the summary of where it was let go
+        var i = self.dragging;
         self.dragging = undefined;
+        if (i !== undefined) self.update(i);  // where it was let go, on the colour scale of its curvatures
       });
     });
     this.reset();
@@ -381,6 +382,8 @@
       parts.push("length " + short(curve.length) + ", signed area " + short(curve.signed_area) + ".");
     }
     var top = k ? Math.max.apply(null, k.map(Math.abs)) || 1 : 1;
+    if (this.dragging === undefined) this.dragTop = 0;  // a drag keeps its first colour scale: were it to follow the
+    else top = this.dragTop = this.dragTop || top;      // dragged vertex's |k|, every vertex would be restyled each frame
     this.circles.forEach(function (c, i) {
       var fill = k ? LEVELS[Math.round(64 * Math.min(Math.max(0.5 + k[i] / (2 * top), 0), 1))] : RAMP[1];
       if (c.fill !== fill) c.setAttribute("fill", c.fill = fill);

@@ -144,6 +144,7 @@ LAB_FRAMES = """async (count) => {
     const lab = document.querySelector('.ddg-lab').lab, frame = () => new Promise(r => requestAnimationFrame(r));
     const drag = [], flow = [];
     for (let k = 0; k < 6; k++) lab.move(3, lab.vertices[3].slice());  // compiled first, as after a moment's use
+    lab.dragging = 3;  // as a pointer drags it
     for (let k = 0; k < count; k++) {
         const t = performance.now(), v = lab.vertices[3];
         lab.move(3, [v[0] + (k % 2 ? -0.01 : 0.01), v[1]]);
@@ -151,7 +152,7 @@ LAB_FRAMES = """async (count) => {
         drag.push(performance.now() - t);
     }
     const inflated = [], measured = [], p = lab.inflation;  // inflated as a Minkowski sum by 0.2
-    lab.method.value = "minkowski"; lab.eps.value = 0.2; lab.dragging = 3;
+    lab.method.value = "minkowski"; lab.eps.value = 0.2;
     for (let k = 0; k < count; k++) {  // dragged: the pieces and the formula at once, the region later
         const t = performance.now(), v = lab.vertices[3];
         lab.move(3, [v[0] + (k % 2 ? -0.01 : 0.01), v[1]]);
@@ -191,6 +192,7 @@ def lab_frames(browser, base):
         context = browser.new_context(**PHONE)
         page = context.new_page()
         page.goto(f"{base}book/10_explorers.html?lab=blob&n={n}", wait_until="load")
+        page.locator("svg.ddg-lab-svg").scroll_into_view_if_needed()  # on the screen: drawn (off it, skipped)
         cdp = context.new_cdp_session(page)
         cdp.send("Emulation.setCPUThrottlingRate", {"rate": 4})
         r = page.evaluate(LAB_FRAMES, 30)

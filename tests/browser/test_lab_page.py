@@ -89,6 +89,9 @@ def test_drag_a_vertex_and_move_one_with_the_keys(browser, book):
         assert dragged[3, 0] > start[3, 0] + 0.1 and dragged[3, 1] > start[3, 1] + 0.05, dragged[3] - start[3]
         assert (np.delete(dragged, 3, axis=0) == np.delete(start, 3, axis=0)).all()
         assert page.evaluate("() => document.activeElement.index") == 3
+        fills = page.evaluate("() => document.querySelector('.ddg-lab').lab.circles.map(c => c.getAttribute('fill'))")
+        k = ddg.DiscreteCurve(dragged).curvature("angle")  # let go: the colours on the scale of its curvatures
+        assert fills == [ramp(RAMP, level) for level in np.round(64 * np.clip(0.5 + k / (2 * np.abs(k).max()), 0, 1)) / 64]
 
         # with the keys: to vertex 4 (Page Down), three steps right, one large step down
         page.keyboard.press("PageDown")
