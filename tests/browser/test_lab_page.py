@@ -76,15 +76,7 @@ def test_drag_a_vertex_and_move_one_with_the_keys(browser, book):
         assert len(start) == 12 and ddg.DiscreteCurve(start).turning_number == 1
 
         # drag vertex 3 by (40, -25) pixels: it moves right and up, and no other vertex moves
-        dot = lab.locator("circle").nth(3)
-        dot.scroll_into_view_if_needed()
-        box = dot.bounding_box()
-        x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
-        page.mouse.move(x, y)
-        page.mouse.down()
-        for k in range(1, 6):
-            page.mouse.move(x + 8 * k, y - 5 * k)
-        page.mouse.up()
+        drag_vertex(page, lab.locator("circle").nth(3), 40, -25)
         dragged = summary_is_ddgs(page)
         assert dragged[3, 0] > start[3, 0] + 0.1 and dragged[3, 1] > start[3, 1] + 0.05, dragged[3] - start[3]
         assert (np.delete(dragged, 3, axis=0) == np.delete(start, 3, axis=0)).all()
@@ -173,6 +165,31 @@ def touch_drag(page, x, y, dx, dy):
     cdp.detach()
 
 
+def lab_visit(browser, book, query, view):
+    """The lab opened at PAGE + query (the network cut) in a view: "desktop, light, mouse" or "phone,
+    dark, touch"; the visit, and whether it is the phone."""
+    phone = view.startswith("phone")
+    visit = Visit(browser, book, PAGE + query, touch=phone)
+    if phone:
+        visit.show("phone")
+        visit.page.emulate_media(color_scheme="dark")
+    return visit, phone
+
+def drag_vertex(page, dot, dx, dy, touch=False):
+    """Drag the vertex `dot` by (dx, dy) pixels in five steps, with the mouse or a finger."""
+    dot.scroll_into_view_if_needed()
+    box = dot.bounding_box()
+    x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    if touch:
+        touch_drag(page, x, y, dx, dy)
+        return
+    page.mouse.move(x, y)
+    page.mouse.down()
+    for k in range(1, 6):
+        page.mouse.move(x + dx * k / 5, y + dy * k / 5)
+    page.mouse.up()
+
+
 @pytest.mark.parametrize("view", ["desktop, light, mouse", "phone, dark, touch"])
 def test_every_control_of_the_lab_against_ddg(browser, book, view):
     """From a chapter's link (?lab=star&kind=tangent&arrows=1): the preset, the arrows and the line on
@@ -182,12 +199,8 @@ def test_every_control_of_the_lab_against_ddg(browser, book, view):
     page printed shows the polygon and the flows as they are, without the controls."""
     from test_site import AXE_OPTIONS, axe_violations
 
-    phone = view.startswith("phone")
-    visit = Visit(browser, book, PAGE + "?lab=star&kind=tangent&arrows=1", touch=phone)  # the network cut
+    visit, phone = lab_visit(browser, book, "?lab=star&kind=tangent&arrows=1", view)
     page = visit.page
-    if phone:
-        visit.show("phone")
-        page.emulate_media(color_scheme="dark")
     press = (lambda locator: locator.tap()) if phone else (lambda locator: locator.click())
     try:
         lab = page.locator(".ddg-lab")
@@ -253,17 +266,7 @@ def test_every_control_of_the_lab_against_ddg(browser, book, view):
         drawn = summary_is_ddgs(page)
         assert len(drawn) == 4 and ddg.DiscreteCurve(drawn).turning_number == 1  # clockwise on the screen
         # dragging vertex 2 by mouse or finger moves it alone
-        dot = lab.locator("circle").nth(2)
-        b = dot.bounding_box()
-        x, y = b["x"] + b["width"] / 2, b["y"] + b["height"] / 2
-        if phone:
-            touch_drag(page, x, y, 20, 15)
-        else:
-            page.mouse.move(x, y)
-            page.mouse.down()
-            for k in range(1, 6):
-                page.mouse.move(x + 4 * k, y + 3 * k)
-            page.mouse.up()
+        drag_vertex(page, lab.locator("circle").nth(2), 20, 15, touch=phone)
         moved = summary_is_ddgs(page)
         assert moved[2, 0] > drawn[2, 0] and moved[2, 1] < drawn[2, 1], moved[2] - drawn[2]
         assert np.array_equal(np.delete(moved, 2, axis=0), np.delete(drawn, 2, axis=0))
@@ -397,12 +400,8 @@ def test_inflation_in_the_lab_against_ddg_and_shapely(browser, book, view):
     polygon of more than 300 vertices are refused in words; axe finds nothing serious."""
     from test_site import AXE_OPTIONS, axe_violations
 
-    phone = view.startswith("phone")
-    visit = Visit(browser, book, PAGE + "?lab=star&inflate=minkowski&eps=0.2", touch=phone)  # the network cut
+    visit, phone = lab_visit(browser, book, "?lab=star&inflate=minkowski&eps=0.2", view)
     page = visit.page
-    if phone:
-        visit.show("phone")
-        page.emulate_media(color_scheme="dark")
     try:
         lab = page.locator(".ddg-lab")
         star = POLYGONS["non-convex star"]
@@ -442,18 +441,7 @@ def test_inflation_in_the_lab_against_ddg_and_shapely(browser, book, view):
         if phone:
             page.emulate_media(color_scheme="dark")
         pieces = lab.locator(".ddg-lab-pieces").get_attribute("d")
-        dot = lab.locator("circle").nth(2)
-        dot.scroll_into_view_if_needed()
-        b = dot.bounding_box()
-        x, y = b["x"] + b["width"] / 2, b["y"] + b["height"] / 2
-        if phone:
-            touch_drag(page, x, y, 15, 10)
-        else:
-            page.mouse.move(x, y)
-            page.mouse.down()
-            for k in range(1, 6):
-                page.mouse.move(x + 3 * k, y + 2 * k)
-            page.mouse.up()
+        drag_vertex(page, lab.locator("circle").nth(2), 15, 10, touch=phone)
         assert lab.locator(".ddg-lab-pieces").get_attribute("d") != pieces
         dragged = summary_is_ddgs(page)
         assert not np.allclose(dragged, POLYGONS["convex pentagon"].vertices)
