@@ -14,7 +14,8 @@
   var SVG = "http://www.w3.org/2000/svg", RAMP = ["#2563eb", "#9ca3af", "#dc2626"];  // ddg.scene.RAMP
   var FLOW_COLORS = {angle: "#3b82f6", sine: "#f59e0b", tangent: "#10b981"};       // ddg.explore.FLOW_COLORS
   var INFLATIONS = {minkowski: ["Minkowski sum", "#f59e0b", "A₀ + εL + ε²/2 Σ ψᵢ"],       // ddg.explore's names and colours
-                    offset: ["offset with kites", "#10b981", "A₀ + εL + ε² Σ tan(ψᵢ/2)"]};
+                    offset: ["offset with kites", "#10b981", "A₀ + εL + ε² Σ tan(ψᵢ/2)"],
+                    bisector: ["fill on the bisector of chapter 6", "#a855f7", "A₀ + εL + ε²/2 Σ Aᵢkᵢ"]};
   var ARC_STEP = Math.PI / 360, MEASURED_UP_TO = 300;  // chords of at most 0.5 degrees; the union's cost grows with
   // the square of the rectangles that overlap (a concave stretch inflated by more than its radius)
   function polar(r, dr, ddr) {  // ddg.smooth.polar, clockwise: r(t) (cos t, -sin t) and its derivatives
@@ -86,9 +87,11 @@
    * each edge e_{i+1/2} sweeps as it moves out by eps along N_{i+1/2}, and at each convex corner
    * (psi_i > 0) the disk sector of angle psi_i (Minkowski; its arc as chords of at most ARC_STEP) or
    * the kite up to where the two moved edges meet, v_i + eps (N_{i-1/2} + tan(psi_i/2) T_{i-1/2})
-   * (offset): the corners of ddg's DiscreteCurve.inflate. The polygon and its pieces, united, are the
-   * region; at a reflex corner (psi_i < 0) the two rectangles overlap instead. */
-  function pieces(curve, eps, method) {
+   * (offset): the corners of ddg's DiscreteCurve.inflate; or chapter 6's fill (its theorem thm-fills),
+   * the two triangles from v_i to p_i = v_i + h_i N_i on the bisector, h_i = eps A_i k_i / (2 sin(psi_i/2)),
+   * which add eps^2/2 A_i k_i for the curvature k (bisector). The polygon and its pieces, united, are
+   * the region; at a reflex corner (psi_i < 0) the two rectangles overlap instead. */
+  function pieces(curve, eps, method, k) {
     var v = curve.vertices, n = v.length, N = curve.normals, T = curve.tangents, psi = curve.turning_angles;
     var at = function (p, d, s) { return [p[0] + s * d[0], p[1] + s * d[1]]; };
     var rectangles = v.map(function (p, i) { var q = v[(i + 1) % n]; return [p, q, at(q, N[i], eps), at(p, N[i], eps)]; });
@@ -96,12 +99,17 @@
     v.forEach(function (p, i) {
       var a = N[(i + n - 1) % n], b = N[i], m = Math.ceil(psi[i] / ARC_STEP), a0 = Math.atan2(a[1], a[0]), ring = [p, at(p, a, eps)];
       if (!(psi[i] > 0)) return;
+      if (method === "bisector") {
+        var h = eps * curve.dual_lengths[i] * k[i] / (2 * Math.sin(psi[i] / 2));
+        corners.push(ring.concat([at(p, curve.bisector_normals[i], h), at(p, b, eps)]));
+        return;
+      }
       if (method === "offset") {
         var Tp = T[(i + n - 1) % n], t = curve.tan_half_psi[i];
         corners.push(ring.concat([at(p, [a[0] + t * Tp[0], a[1] + t * Tp[1]], eps), at(p, b, eps)]));
         return;
       }
-      for (var k = 1; k < m; k++) ring.push(at(p, [Math.cos(a0 - psi[i] * k / m), Math.sin(a0 - psi[i] * k / m)], eps));
+      for (var j = 1; j < m; j++) ring.push(at(p, [Math.cos(a0 - psi[i] * j / m), Math.sin(a0 - psi[i] * j / m)], eps));
       corners.push(ring.concat([at(p, b, eps)]));
     });
     return {rectangles: rectangles, corners: corners};
@@ -276,7 +284,7 @@
     var points = this.vertices.slice(), eps = Number(this.eps.value), curve = null;
     try { curve = new window.ddgLab.DiscreteCurve(this.vertices); } catch (e) { /* drawn as it is */ }
     if (curve && this.method.value && eps > 0 && curve.signed_area > 0) {
-      var parts = pieces(curve, eps, this.method.value);
+      var parts = pieces(curve, eps, this.method.value === "bisector" ? "offset" : this.method.value);  // a fill lies in its kite
       parts.rectangles.concat(parts.corners).forEach(function (r) { points = points.concat(r); });
     }
     if (points.length) this.size = frame(this.svg, points);
@@ -395,13 +403,13 @@
     });
     s.textContent = parts.join(" ");
     this.arrowPath.setAttribute("d", gradient && this.arrows.checked ? this.arrowsPath(gradient) : "");
-    this.inflate(this.drawing ? null : curve);
+    this.inflate(this.drawing ? null : curve, ks[kind]);
     this.describe(curve, ks, gradient);
   };
 
   /* The polygon inflated by eps: its pieces and the formula's area at once; the region, their union,
    * measured when the hand stops (a drag asks for it again at every frame). */
-  Lab.prototype.inflate = function (curve) {
+  Lab.prototype.inflate = function (curve, k) {
     var method = this.method.value, eps = Number(this.eps.value), p = this.inflation, self = this, formula;
     this.epsShown.textContent = eps.toFixed(2);
     this.eps.disabled = !method;
@@ -415,11 +423,15 @@
     try {
       var turns = curve.turning_number, simple = "the formulas are for a simple clockwise polygon, and this one has turning number ";
       if (Math.abs(turns) !== 1) throw new Error(simple + turns);
-      formula = curve.inflated_area(eps, method);  // refuses a counter-clockwise polygon, saying why
+      if (method !== "bisector") formula = curve.inflated_area(eps, method);  // refuses a counter-clockwise polygon, saying why
       if (turns !== 1) throw new Error(simple + turns);
+      if (method === "bisector" && !Array.isArray(k)) throw new Error("no " + this.kind.value + " curvature here");
+      if (method === "bisector") formula = curve.signed_area + eps * curve.length + eps * eps / 2 * k.reduce(function (sum, x, i) {
+        return sum + curve.dual_lengths[i] * x;
+      }, 0);
     } catch (e) { p.textContent = "No inflation: " + e.message + "."; return; }
-    var parts = eps > 0 ? pieces(curve, eps, method) : {rectangles: [], corners: []}, said = "Inflated by ε = " + eps.toFixed(2) + " (" + name + "): the formula " +
-      INFLATIONS[method][2] + " gives " + short(formula);
+    var parts = eps > 0 ? pieces(curve, eps, method, k) : {rectangles: [], corners: []}, said = "Inflated by ε = " + eps.toFixed(2) + ", " + name + ": the formula " +
+      INFLATIONS[method][2] + (method === "bisector" ? " (k: " + this.kind.value + ")" : "") + " gives " + short(formula);
     p.dataset.formula = formula;
     this.pieces.setAttribute("fill", color);
     this.pieces.setAttribute("stroke", color);

@@ -385,7 +385,7 @@ def inflation_is_ddgs(page, curve):
     shapely_area = measured_region(curve, eps, method).area
     chords = (np.pi / 360) ** 2 / 6 * eps**2 / 2 * curve.turning_angles.clip(0).sum() if method == "minkowski" else 0
     assert abs(measured - shapely_area) <= 2 * chords + 1e-12 * shapely_area, (method, eps, measured - shapely_area, chords)
-    said = re.search(r"by ε = (\S+) .* formula − region = (\S+)\.$", text)
+    said = re.search(r"by ε = ([\d.]+), .* formula − region = (\S+)\.$", text)
     assert said and float(said[1]) == eps and float(said[2]) == float(f"{formula - measured:.2g}"), text
     return formula - measured
 
@@ -394,7 +394,9 @@ def inflation_is_ddgs(page, curve):
 def test_inflation_in_the_lab_against_ddg_and_shapely(browser, book, view):
     """From chapter 5's link (?lab=star&inflate=minkowski&eps=0.2): the star inflated both ways at the
     exercise's eps, moved by the keys; the formula is ddg's and the region is shapely's; the offset
-    is exact on the star and the Minkowski sum misses by eps^2 times a constant. On random simple
+    is exact on the star and the Minkowski sum misses by eps^2 times a constant. Chapter 6's fill on
+    the bisector matches its formula for each curvature on convex polygons, on the star for the tangent
+    curvature only. On random simple
     polygons the region is the Minkowski sum shapely computes, whatever their reflex corners; a
     drag re-measures the region when it ends; a figure-eight, a counter-clockwise polygon and a
     polygon of more than 300 vertices are refused in words; axe finds nothing serious."""
@@ -420,6 +422,27 @@ def test_inflation_in_the_lab_against_ddg_and_shapely(browser, book, view):
         assert abs(missed["minkowski", 0.8] / missed["minkowski", 0.4] - 4) < 1e-3
         assert all(abs(missed["offset", eps]) < 1e-12 for eps in (0.2, 0.4, 0.8))
         assert lab.locator(".ddg-lab-region").get_attribute("d") and lab.locator(".ddg-lab-pieces").get_attribute("d")
+
+        # chapter 6's fill on the bisector, for each curvature: its formula A_0 + eps L + eps^2/2 <k, 1>
+        # is ddg's, and its region matches it on convex polygons (thm-fills); on the star only for the
+        # tangent curvature, whose fill is the offset's kite and whose reflex term is the overlap's area
+        page.goto(f"{book}{PAGE}?lab=star&inflate=bisector&kind=sine&eps=0.3")  # as a link would open it
+        assert lab.locator("select").nth(2).evaluate("s => s.selectedOptions[0].textContent") == "fill on the bisector of chapter 6"
+        rng = np.random.default_rng(6)
+        ellipses = [np.c_[2 * np.cos(t), -np.sin(t)] for t in (np.sort(rng.uniform(0, 2 * np.pi, n)) for n in (5, 9, 30))]
+        for convex, vertices in [(False, star.vertices), (True, POLYGONS["convex pentagon"].vertices),
+                                 *((True, v) for v in ellipses)]:
+            curve = ddg.DiscreteCurve(vertices)
+            for kind in (*ddg.CURVATURES, "circle"):
+                data = page.evaluate("""([v, kind]) => { const lab = document.querySelector('.ddg-lab').lab;
+                    lab.vertices = v; lab.kind.value = kind; lab.eps.value = 0.3; lab.rebuild();
+                    return new Promise(done => setTimeout(() => done(Object.assign({}, lab.inflation.dataset)), 0)); }""",
+                                     [vertices.tolist(), kind])
+                k = circle_curvature(vertices) if kind == "circle" else curve.curvature(kind)
+                formula = curve.signed_area + 0.3 * curve.length + 0.3**2 / 2 * (curve.dual_lengths @ k)
+                assert abs(float(data["formula"]) - formula) <= 1e-12 * formula, kind
+                short = float(data["formula"]) - float(data["measured"])
+                assert (abs(short) < 1e-12 * formula) == (convex or kind == "tangent"), (kind, short)  # tangent: the offset
 
         # random simple polygons (star-shaped, 5 to 40 vertices, clockwise): the Minkowski region is shapely's
         lab.locator("select").nth(2).select_option(label="Minkowski sum")
