@@ -126,6 +126,20 @@
       return 2 * Math.sin(psi) / chord;
     });
   }
+  function crossing(v) {  // the first two edges, not neighbours, that meet: [i, j] (from v_i and from v_j); null if simple
+    var n = v.length, o = function (a, b, c) { return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]); };
+    var on = function (a, b, c) {  // c, on the line through a and b, lies between them
+      return Math.min(a[0], b[0]) <= c[0] && c[0] <= Math.max(a[0], b[0]) && Math.min(a[1], b[1]) <= c[1] && c[1] <= Math.max(a[1], b[1]);
+    };
+    for (var i = 0; i < n; i++) {
+      for (var j = i + 2; j < n - (i === 0 ? 1 : 0); j++) {
+        var a = v[i], b = v[i + 1], c = v[j], d = v[(j + 1) % n], s1 = o(c, d, a), s2 = o(c, d, b), s3 = o(a, b, c), s4 = o(a, b, d);
+        if (s1 * s2 < 0 && s3 * s4 < 0) return [i, j];
+        if ((!s1 && on(c, d, a)) || (!s2 && on(c, d, b)) || (!s3 && on(a, b, c)) || (!s4 && on(a, b, d))) return [i, j];
+      }
+    }
+    return null;
+  }
   var KINDS = window.ddgLab.CURVATURES.concat(["circle"]);  // the curvatures the lab shows: ddg's three and chapter 6's circle
   function regionArea(region) {  // a multipolygon of polygon-clipping: outer rings counter-clockwise, holes clockwise
     return region.reduce(function (total, polygon) {
@@ -425,6 +439,8 @@
       if (Math.abs(turns) !== 1) throw new Error(simple + turns);
       if (method !== "bisector") formula = curve.inflated_area(eps, method);  // refuses a counter-clockwise polygon, saying why
       if (turns !== 1) throw new Error(simple + turns);
+      var cross = curve.vertices.length <= MEASURED_UP_TO && crossing(curve.vertices);  // O(n^2): where it is measured
+      if (cross) throw new Error("the formulas are for a simple polygon, and the edges from vertex " + cross[0] + " and from vertex " + cross[1] + " meet");
       if (method === "bisector" && !Array.isArray(k)) throw new Error("no " + this.kind.value + " curvature here");
       if (method === "bisector") formula = curve.signed_area + eps * curve.length + eps * eps / 2 * k.reduce(function (sum, x, i) {
         return sum + curve.dual_lengths[i] * x;

@@ -398,8 +398,8 @@ def test_inflation_in_the_lab_against_ddg_and_shapely(browser, book, view):
     the bisector matches its formula for each curvature on convex polygons, on the star for the tangent
     curvature only. On random simple
     polygons the region is the Minkowski sum shapely computes, whatever their reflex corners; a
-    drag re-measures the region when it ends; a figure-eight, a counter-clockwise polygon and a
-    polygon of more than 300 vertices are refused in words; axe finds nothing serious."""
+    drag re-measures the region when it ends; a figure-eight, a polygon that crosses itself, a
+    counter-clockwise polygon and a polygon of more than 300 vertices are refused in words; axe finds nothing serious."""
     from test_site import AXE_OPTIONS, axe_violations
 
     visit, phone = lab_visit(browser, book, "?lab=star&inflate=minkowski&eps=0.2", view)
@@ -477,6 +477,9 @@ def test_inflation_in_the_lab_against_ddg_and_shapely(browser, book, view):
         inflation = lab.locator(".ddg-lab-inflation")
         lab.locator("select").first.select_option("figure-eight")
         assert "turning number 0" in inflation.inner_text()
+        page.evaluate("""() => { const lab = document.querySelector('.ddg-lab').lab;  // turning number 1, but it crosses itself
+            lab.vertices = [[0, 0], [0, 3], [1, 3], [1, -1], [2, -1], [2, 3], [3, 3], [3, 0]]; lab.rebuild(); }""")
+        assert "simple polygon, and the edges from vertex 2 and from vertex 7 meet" in inflation.inner_text()
         lab.locator("select").first.select_option("regular n-gon")
         page.evaluate("() => { const lab = document.querySelector('.ddg-lab').lab; lab.vertices.reverse(); lab.rebuild(); }")
         assert "counter-clockwise" in inflation.inner_text() and "reverse it" in inflation.inner_text()
