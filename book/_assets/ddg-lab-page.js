@@ -13,8 +13,8 @@
   "use strict";
   var SVG = "http://www.w3.org/2000/svg", RAMP = ["#2563eb", "#9ca3af", "#dc2626"];  // ddg.scene.RAMP
   var FLOW_COLORS = {angle: "#3b82f6", sine: "#f59e0b", tangent: "#10b981"};       // ddg.explore.FLOW_COLORS
-  var INFLATIONS = {minkowski: ["Minkowski sum", "#f59e0b", "A₀ + εL + ε²/2 Σ ψᵢ"],       // ddg.explore's names and colours
-                    offset: ["offset with kites", "#10b981", "A₀ + εL + ε² Σ tan(ψᵢ/2)"],
+  var INFLATIONS = {minkowski: ["Minkowski sum", "#f59e0b", "A₀ + εL + ε²/2 Σ ψᵢ"],       // ddg.explore's names and colours,
+                    offset: ["offset with kites", "#10b981", "A₀ + εL + ε² Σ tan(ψᵢ/2)"],  // and ddg.scene's purple
                     bisector: ["fill on the bisector of chapter 6", "#a855f7", "A₀ + εL + ε²/2 Σ Aᵢkᵢ"]};
   var ARC_STEP = Math.PI / 360, MEASURED_UP_TO = 300;  // chords of at most 0.5 degrees; the union's cost grows with
   // the square of the rectangles that overlap (a concave stretch inflated by more than its radius)
@@ -93,15 +93,16 @@
    * the region; at a reflex corner (psi_i < 0) the two rectangles overlap instead. */
   function pieces(curve, eps, method, k) {
     var v = curve.vertices, n = v.length, N = curve.normals, T = curve.tangents, psi = curve.turning_angles;
+    var bisectors = method === "bisector" ? curve.bisector_normals : null;  // a getter: computed once here
     var at = function (p, d, s) { return [p[0] + s * d[0], p[1] + s * d[1]]; };
     var rectangles = v.map(function (p, i) { var q = v[(i + 1) % n]; return [p, q, at(q, N[i], eps), at(p, N[i], eps)]; });
     var corners = [];
     v.forEach(function (p, i) {
-      var a = N[(i + n - 1) % n], b = N[i], m = Math.ceil(psi[i] / ARC_STEP), a0 = Math.atan2(a[1], a[0]), ring = [p, at(p, a, eps)];
       if (!(psi[i] > 0)) return;
+      var a = N[(i + n - 1) % n], b = N[i], ring = [p, at(p, a, eps)];
       if (method === "bisector") {
         var h = eps * curve.dual_lengths[i] * k[i] / (2 * Math.sin(psi[i] / 2));
-        corners.push(ring.concat([at(p, curve.bisector_normals[i], h), at(p, b, eps)]));
+        corners.push(ring.concat([at(p, bisectors[i], h), at(p, b, eps)]));
         return;
       }
       if (method === "offset") {
@@ -109,6 +110,7 @@
         corners.push(ring.concat([at(p, [a[0] + t * Tp[0], a[1] + t * Tp[1]], eps), at(p, b, eps)]));
         return;
       }
+      var m = Math.ceil(psi[i] / ARC_STEP), a0 = Math.atan2(a[1], a[0]);
       for (var j = 1; j < m; j++) ring.push(at(p, [Math.cos(a0 - psi[i] * j / m), Math.sin(a0 - psi[i] * j / m)], eps));
       corners.push(ring.concat([at(p, b, eps)]));
     });
@@ -384,7 +386,8 @@
    * largest |k|), so each attribute is written only where it changed. */
   Lab.prototype.update = function (moved) {
     var v = this.vertices, n = v.length, kind = this.kind.value, lab = window.ddgLab, curve = null, k = null, parts = [], s = this.summary;
-    var ks = this.ks = {}, gradient = null;  // each curvature and the gradient of length, once for everything shown
+    var ks = this.ks = {}, gradient = null;  // each curvature and the gradient of length, once for everything
+    // shown (lab.ks: the tests read the circle curvature there)
     this.path.setAttribute("d", pathOf(v, !this.drawing));
     ["turningNumber", "length", "signedArea"].forEach(function (name) { delete s.dataset[name]; });
     try { curve = new lab.DiscreteCurve(v); } catch (e) { parts.push("Not a polygon the lecture allows: " + e.message + "."); }
@@ -434,17 +437,14 @@
     p.textContent = "";
     if (!method || !curve) return;
     var name = INFLATIONS[method][0], color = INFLATIONS[method][1];
-    try {
-      var turns = curve.turning_number, simple = "the formulas are for a simple clockwise polygon, and this one has turning number ";
-      if (Math.abs(turns) !== 1) throw new Error(simple + turns);
-      if (method !== "bisector") formula = curve.inflated_area(eps, method);  // refuses a counter-clockwise polygon, saying why
-      if (turns !== 1) throw new Error(simple + turns);
-      var cross = curve.vertices.length <= MEASURED_UP_TO && crossing(curve.vertices);  // O(n^2): where it is measured
+    try {  // the formulas are for a simple clockwise polygon (crossings looked for where the region is measured: O(n^2))
+      var turns = curve.turning_number, cross = curve.vertices.length <= MEASURED_UP_TO && crossing(curve.vertices);
+      if (turns === -1) throw new Error("the polygon runs counter-clockwise, so its normals point inward and inflating it would erode it; reverse it (draw it clockwise)");
+      if (turns !== 1) throw new Error("the formulas are for a simple clockwise polygon, and this one has turning number " + turns);
       if (cross) throw new Error("the formulas are for a simple polygon, and the edges from vertex " + cross[0] + " and from vertex " + cross[1] + " meet");
       if (method === "bisector" && !Array.isArray(k)) throw new Error("no " + this.kind.value + " curvature here");
-      if (method === "bisector") formula = curve.signed_area + eps * curve.length + eps * eps / 2 * k.reduce(function (sum, x, i) {
-        return sum + curve.dual_lengths[i] * x;
-      }, 0);
+      formula = method !== "bisector" ? curve.inflated_area(eps, method) : curve.signed_area + eps * curve.length +
+        eps * eps / 2 * k.reduce(function (sum, x, i) { return sum + curve.dual_lengths[i] * x; }, 0);  // <k, 1> = sum A_i k_i
     } catch (e) { p.textContent = "No inflation: " + e.message + "."; return; }
     var parts = eps > 0 ? pieces(curve, eps, method, k) : {rectangles: [], corners: []}, said = "Inflated by ε = " + eps.toFixed(2) + ", " + name + ": the formula " +
       INFLATIONS[method][2] + (method === "bisector" ? " (k: " + this.kind.value + ")" : "") + " gives " + short(formula);

@@ -175,6 +175,7 @@ def lab_visit(browser, book, query, view):
         visit.page.emulate_media(color_scheme="dark")
     return visit, phone
 
+
 def drag_vertex(page, dot, dx, dy, touch=False):
     """Drag the vertex `dot` by (dx, dy) pixels in five steps, with the mouse or a finger."""
     dot.scroll_into_view_if_needed()
@@ -473,7 +474,8 @@ def test_inflation_in_the_lab_against_ddg_and_shapely(browser, book, view):
         short = inflation_is_ddgs(page, ddg.DiscreteCurve(dragged))  # (pi/360)^2/6 = 1.3e-5 of the sectors
         assert 0 < short <= 1.27e-5 * 0.3**2 / 2 * 2 * np.pi, short
 
-        # refused in words: the figure-eight, a counter-clockwise polygon, more than 300 vertices
+        # refused in words: the figure-eight, a polygon that crosses itself, a counter-clockwise one; more
+        # than 300 vertices: the formula alone
         inflation = lab.locator(".ddg-lab-inflation")
         lab.locator("select").first.select_option("figure-eight")
         assert "turning number 0" in inflation.inner_text()
