@@ -182,9 +182,9 @@ def run_notebook(data, coding, inputs, limits, cache=None, force=(), cached_only
 # ------------------------------------------------------------------ what happened, in words
 
 
-def _cells(indices):
-    numbers = [str(int(i) + 1) for i in indices]
-    return ("cell " if len(numbers) == 1 else "cells ") + ", ".join(numbers)
+class GraderFault(Exception):
+    """The grader, not the submission, failed (the sandbox did not start, the harness died): the
+    instructor is told, the student gets no grade rather than a zero."""
 
 
 def _head(cells, i):
@@ -192,24 +192,37 @@ def _head(cells, i):
     return printable(line if len(line) <= 40 else line[:37] + "...")
 
 
+def _cell(cells, i):
+    """A cell as the student finds it in JupyterLab: by its first line (JupyterLab shows no cell numbers)."""
+    head = _head(cells, i)
+    same = [j for j, c in enumerate(cells) if c is not None and _head(cells, j) == head]
+    which = "" if len(same) < 2 else f" (the {_ordinal(same.index(int(i)) + 1)} cell that starts so)"
+    return f"the cell starting `{head}`{which}" if head else f"an empty cell{which}"
+
+
+def _ordinal(k):
+    return f"{k}{'th' if 10 <= k % 100 <= 20 else {1: 'st', 2: 'nd', 3: 'rd'}.get(k % 10, 'th')}"
+
+
 def cell_story(entry, cells, limits):
-    """Lines on the cells that ran for one exercise: which, and each error, stop or crash."""
+    """Lines on the cells that ran for one exercise: how many, and each error, stop or crash."""
     if not entry.get("ran") and not entry.get("stopped"):
         return []
-    lines = [f"ran {_cells(entry['ran'])} of {len(cells)} (the cells the answer needs)"] if entry.get("ran") else []
+    code = sum(c is not None for c in cells)
+    lines = [f"ran {len(entry['ran'])} of the notebook's {code} code cells (those the answer needs)"] if entry.get(
+        "ran") else []
     for i, cell in entry.get("cells", {}).items():
         error = cell.get("error")
         if cell.get("timeout"):
-            lines.append(f"cell {int(i) + 1} ({_head(cells, i)}) was stopped at its time limit of "
-                         f"{limits['cell_timeout']:g} s (an endless loop?)")
+            lines.append(f"{_cell(cells, i)} was stopped at its time limit of {limits['cell_timeout']:g} s "
+                         "(an endless loop?)")
         elif error:
-            lines.append(f"cell {int(i) + 1} ({_head(cells, i)}) raised {printable(error['ename'])}: "
-                         f"{printable(error['evalue'])[:200]}")
+            lines.append(f"{_cell(cells, i)} raised {printable(error['ename'])}: {printable(error['evalue'])[:200]}")
     for stop in entry.get("stopped", []):
         if stop.get("cell") is None:
             lines.append("the answer's process did not end in time and was stopped")
             continue
-        where = f"cell {int(stop['cell']) + 1} ({_head(cells, stop['cell'])})"
+        where = _cell(cells, stop["cell"])
         how = stop.get("how", "")
         if stop["why"] == "time":
             what = f"did not stop at its time limit of {limits['cell_timeout']:g} s and was killed"
@@ -226,10 +239,12 @@ def cell_story(entry, cells, limits):
 
 
 def _failed(facts, limits):
+    """The student's words for a run that gave no report: the whole notebook's time limit; anything else is
+    the grader's fault (raised, with the sandbox's log for the instructor)."""
     if facts.get("timed_out"):
         return f"the notebook did not finish within {limits['timeout']:g} s (the limit for a whole submission)"
-    tail = " ".join(facts.get("log", "").split()[-40:])
-    return f"the grader could not run this notebook ({tail or 'no message'}): tell your instructor"
+    raise GraderFault(f"the sandbox or the harness ended without a report (status {facts.get('status')}): "
+                      f"{facts.get('log', '').strip() or 'no message'}")
 
 
 def assess(label, meta, entry, calls, cells, limits):
@@ -245,11 +260,12 @@ def assess(label, meta, entry, calls, cells, limits):
         defining = [i for i, (_, _, defines) in syntax.items() if defines]
         if defining:
             line, message, _ = syntax[defining[-1]]
-            problem = (f"{_cells(defining[-1:])}, which defines `{answer}`, has a SyntaxError on line {line}: "
-                       f"{printable(message)}; the cell cannot run")
+            problem = (f"{_cell(cells or [], defining[-1])}, which defines `{answer}`, has a SyntaxError on line "
+                       f"{line}: {printable(message)}; the cell cannot run")
         else:
+            broken = [_cell(cells or [], i) for i in syntax]
             problem = f"no `{answer}` in your notebook: no cell defines it" + (
-                f" ({_cells(syntax)} could not be read: a SyntaxError)" if syntax else "")
+                f" ({', '.join(broken)} could not be read: a SyntaxError)" if syntax else "")
     elif "failed" in entry:
         problem = _failed(entry["failed"], limits)
     elif entry.get("answer") is None:
@@ -306,15 +322,46 @@ def grade_one(submission, table, inputs, limits, out, forced, cached_only):
     return record
 
 
-def grade(submissions, table, inputs, limits, out, jobs=None, only=(), students=(), cached_only=False):
-    """Grade ``submissions`` in parallel (``only`` exercises and ``students`` are graded afresh); their records."""
+def grade_safely(submission, table, inputs, limits, out, forced, cached_only):
+    """:func:`grade_one`, or, when the grader fails on this submission, a record that says so: no
+    points (not a zero), a line for the student, the traceback in ``grader-errors.log``."""
+    try:
+        return grade_one(submission, table, inputs, limits, out, forced, cached_only)
+    except Exception as error:  # noqa: BLE001 - one submission never stops a class
+        import traceback
+
+        coding = table[submission.chapter]["coding"]
+        log = pathlib.Path(out) / "grader-errors.log"
+        log.parent.mkdir(parents=True, exist_ok=True)
+        with open(log, "a", encoding="utf-8") as file:
+            file.write(f"--- {time.strftime('%Y-%m-%d %H:%M:%S')} {submission.student}, {submission.chapter}: "
+                       f"{submission.path}\n{''.join(traceback.format_exception(error))}\n")
+        reason = str(error).splitlines()[0][:200] if str(error) else type(error).__name__
+        return {"student": submission.student, "chapter": submission.chapter, "path": str(submission.path),
+                "points": {label: None for label in coding}, "max": {label: e.get("points", 1) for label, e in
+                                                                     coding.items()},
+                "problem": {label: None for label in coding}, "right": {label: [0, 0] for label in coding},
+                "lines": ["✗ not graded yet: the grader failed on this notebook (not your doing); your instructor "
+                          "has been told and will grade it again"],
+                "ungraded": False, "cached": False, "fault": f"{type(error).__name__}: {reason}"}
+
+
+def grade(submissions, table, inputs, limits, out, jobs=None, only=(), students=(), cached_only=False, progress=None):
+    """Grade ``submissions`` in parallel (``only`` exercises and ``students`` are graded afresh); their records.
+
+    Whatever happens to one submission, the others are graded (:func:`grade_safely`)."""
     def forced(submission, coding):
         return set(coding) if submission.student in students else set(only) & set(coding)
 
     with concurrent.futures.ThreadPoolExecutor(jobs or os.cpu_count()) as pool:
-        futures = [pool.submit(grade_one, s, table, inputs, limits, pathlib.Path(out), forced, cached_only)
+        futures = [pool.submit(grade_safely, s, table, inputs, limits, pathlib.Path(out), forced, cached_only)
                    for s in submissions]
-        return [f.result() for f in futures]
+        records = []
+        for future in futures:
+            records.append(future.result())
+            if progress:
+                progress(len(records), len(futures))
+        return records
 
 
 def _secret(args, parser):
@@ -345,11 +392,18 @@ def parser():
     p.add_argument("--student", action="append", default=[], metavar="ID", help="grade this student again")
     p.add_argument("--shard", help="K/N: grade only the K-th of N equal parts of the class (then --merge)")
     p.add_argument("--merge", action="store_true", help="run nothing: write the outputs from the shards' results")
-    p.add_argument("--merge-manual", metavar="CSV", help="scores of the written exercises (student_id, labels)")
-    p.add_argument("--deadline", help="ISO date and time, e.g. 2027-03-01T23:59+01:00")
+    p.add_argument("--merge-manual", metavar="CSV", help="scores of the written exercises (student_id, labels); "
+                   "kept in OUT/instructor.json for every later run")
+    p.add_argument("--deadline", action="append", default=[], metavar="[CHAPTER=]WHEN",
+                   help="a deadline, ISO date and time (2027-03-01T23:59+01:00), for every chapter or one "
+                        "(03_winding_number=2027-03-01T23:59); repeat for each chapter; kept for later runs")
     p.add_argument("--submitted", metavar="CSV", help="when each student submitted (student_id, submitted[, chapter])")
-    p.add_argument("--late-penalty", type=float, default=10, help="percent of the points lost per day late (10)")
+    p.add_argument("--grace", metavar="TIME", help="a submission this soon after the deadline is on time (15m, 2h)")
+    p.add_argument("--late-penalty", type=float, help="percent of the points lost per day late (10)")
     p.add_argument("--late-cutoff", type=float, help="days after which a late submission earns nothing")
+    p.add_argument("--canvas-column", action="append", default=[], metavar="CHAPTER=HEADER",
+                   help="the Canvas assignment a chapter's total goes to, as its column is headed in Canvas's "
+                        "gradebook export, e.g. '03_winding_number=Homework 3 (123456)'; kept for later runs")
     p.add_argument("--jobs", type=int, help="submissions graded at once (default: one per core)")
     p.add_argument("--timeout", type=float, default=LIMITS["timeout"], help="seconds for one submission (180)")
     p.add_argument("--cell-timeout", type=float, default=LIMITS["cell_timeout"], help="seconds for one cell (30)")
@@ -387,11 +441,22 @@ def main(argv=None):
     try:
         roster = rosters.read_roster(args.roster) if args.roster else None
         submissions, problems = rosters.collect(args.submissions, table, roster)
-        policy = exports.late_policy(args.deadline, args.submitted, args.late_penalty, args.late_cutoff)
-        students = set(roster or ()) | {s.student for s in submissions}
+        state = exports.load_state(out)
+        exports.update_policy(state, table, args.deadline, args.submitted, args.late_penalty, args.late_cutoff,
+                              args.grace)
+        for text in args.canvas_column:
+            chapter, equals, header = text.partition("=")
+            if not equals or chapter not in table or not header.strip():
+                raise ValueError(f"--canvas-column {text}: give CHAPTER=HEADER with a chapter of the book "
+                                 f"({', '.join(sorted(table))}) and the assignment's column header in Canvas")
+            state["canvas_columns"][chapter] = header.strip()
+        students = set(roster or ()) | {s.student for s in submissions} | {
+            r["student"] for r in exports.load_records(out).values()}
         manual = exports.read_manual(args.merge_manual, table, students) if args.merge_manual else {}
     except (OSError, ValueError) as error:
         p.error(str(error))
+    for (student, label), score in manual.items():
+        state["written"].setdefault(student, {})[label] = score
     unknown = [label for label in args.only if not any(label in c["coding"] for c in table.values())]
     if unknown:
         p.error(f"--only {unknown[0]}: no coding exercise has this label")
@@ -410,28 +475,52 @@ def main(argv=None):
     if not sandbox.available() and not args.merge:
         print("note: no sandbox here (it needs Linux, root, unshare, mount and chroot, and namespaces): "
               "each submission runs as you and can read what you can (see the README)", file=sys.stderr)
+    out.mkdir(parents=True, exist_ok=True)
+    exports.save_state(out, state)  # what the instructor entered is kept before anything runs
     start = time.monotonic()
     inputs = draw_inputs({c: table[c] for c in {s.chapter for s in graded_here}}, secret)
-    records = grade(graded_here, table, inputs, limits, out, args.jobs, set(args.only), set(args.student), args.merge)
+
+    def progress(done, total):
+        if sys.stderr.isatty() and total > 1:
+            print(f"\rgraded {done} of {total} submissions", end="\n" if done == total else "", file=sys.stderr,
+                  flush=True)
+
+    records = grade(graded_here, table, inputs, limits, out, args.jobs, set(args.only), set(args.student), args.merge,
+                    progress)
     seconds = time.monotonic() - start
     ungraded = [r for r in records if r["ungraded"]]
     if ungraded:
         sys.exit("error: no shard graded " + ", ".join(f"{r['path']}" for r in ungraded[:20])
                  + (" ..." if len(ungraded) > 20 else "") + ": run those shards again, or grade without --merge")
+    faults = [r for r in records if r.get("fault")]
     if args.shard:
         print(f"shard {args.shard}: graded {len(records)} of {len(submissions)} submissions in {seconds:.0f} s; "
               f"when every shard is done: python -m instructor.grade ... --merge --out {out}")
-        return
-    written = exports.write_all(records, table, roster, out, problems, policy, manual)
+        for record in faults:
+            print(f"  grader fault: {record['path']}: {record['fault']}")
+        return 3 if faults else 0
+    exports.save_records(out, records)
+    kept = exports.load_records(out)
+    for record in records:  # a fault stands in only where no earlier result of the submission is kept
+        kept.setdefault((record["student"], record["chapter"]), record)
+    problems = problems + [f"{r['path']}: not graded: the grader failed on it ({r['fault']}); the traceback is in "
+                           f"{(out / 'grader-errors.log').resolve()}; grade it again once fixed"
+                           + (" (its earlier result is kept meanwhile)" if (r["student"], r["chapter"]) in
+                              exports.load_records(out) else "") for r in faults]
+    written = exports.write_all(list(kept.values()), table, roster, out, problems, state)
     cached = sum(r["cached"] for r in records)
-    print(f"graded {len(records)} submissions ({cached} from earlier results) in {seconds:.0f} s")
+    earlier = len(kept) - len({(r["student"], r["chapter"]) for r in records})
+    print(f"graded {len(records)} submissions ({cached} from earlier results) in {seconds:.0f} s"
+          + (f"; {earlier} results of earlier runs kept" if earlier else ""))
     for path in written:
         print(f"  {path.resolve()}")
     if problems:
-        print(f"{len(problems)} notebooks not graded (also in {(out / 'problems.txt').resolve()}):")
+        print(f"{len(problems)} notebooks need you (also in {(out / 'problems.txt').resolve()}):")
         for problem in problems:
             print(f"  {problem}")
+        return 3
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -133,13 +133,29 @@ def _notebook(folder, chapter):
 
 
 def run(root="/autograder"):
-    """Grade the submission in ``root/submission``; write ``root/results/results.json``."""
+    """Grade the submission in ``root/submission``; write ``root/results/results.json``, always: a fault of
+    the grader is said there (and its traceback printed for the instructor, in the autograder's output)."""
+    root = pathlib.Path(root)
+    start = time.monotonic()
+    try:
+        return _run(root, start)
+    except Exception:  # noqa: BLE001 - Gradescope needs its results.json whatever happened
+        import traceback
+
+        traceback.print_exc()
+        results = {"score": 0, "execution_time": round(time.monotonic() - start),
+                   "output": "✗ not graded: the autograder failed on this submission (not your doing); your "
+                             "instructor can see why and will grade it again", "tests": []}
+        (root / "results").mkdir(parents=True, exist_ok=True)
+        (root / "results" / "results.json").write_text(json.dumps(results, indent=1))
+        return results
+
+
+def _run(root, start):
     from ddg.checks.judge import Call
 
     from . import grade
 
-    start = time.monotonic()
-    root = pathlib.Path(root)
     config = json.loads((root / "source" / "autograder.json").read_text())
     chapter, coding, limits = config["chapter"], config["coding"], config["limits"]
     path, problem = _notebook(root / "submission", chapter)

@@ -6,20 +6,32 @@ A submission belongs to
   depth below the folder given on the command line; the first folder is the student); or, for a
   notebook directly in the folder given,
 * the student named by its file name before the chapter: ``alice_03_winding_number.ipynb`` or
-  ``alice-03_winding_number.ipynb``. A notebook given by itself (``submissions/*/*.ipynb``) belongs
-  to the name in front of the chapter, or else to its folder.
+  ``alice-03_winding_number.ipynb``, or by Canvas's download name,
+  ``<lastfirst>[_late]_<canvas user id>_<submission id>_<file name>``. A notebook given by itself
+  (``submissions/*/*.ipynb``) belongs to the name in front of the chapter, or else to its folder.
 
 With a roster, that name must be a student's ``id`` (or ``canvas_id``), or contain exactly one as
-a part between underscores, as Canvas's downloads do (``liddellalice_1234_5678_03_winding_number.ipynb``
-with ``canvas_id`` 1234). The chapter is the chapter of the book whose name the file name contains
-(``03_winding_number (1).ipynb`` is chapter 3), never what the notebook's metadata claims. A notebook
-that matches no student or no chapter, and two notebooks for one student and chapter, are reported
-and not graded: nothing is guessed.
+a part between underscores. A folder that is no student of the roster (``submissions/hw3/``, as
+Canvas's zip of one assignment unpacks) is a folder of files whose names say whose they are. A file
+is never credited to another student than the one whose folder holds it:
+``alice/bob_03_winding_number.ipynb`` is reported, not graded. The chapter is the chapter of the book
+whose name the file name contains (``03_winding_number (1).ipynb`` is chapter 3), never what the
+notebook's metadata claims. A notebook that matches no student or no chapter, and two notebooks for
+one student and chapter, are reported and not graded: nothing is guessed.
+
+The CSV files an instructor hands the grader (roster, scores, submission times) are read in any
+common dialect (:func:`read_table`): comma, semicolon or tab, with or without Excel's byte order
+mark, CRLF line ends, extra columns; a Canvas gradebook export serves as a roster.
 """
 
 import csv
+import io
 import pathlib
+import re
 from dataclasses import dataclass
+
+CANVAS_NAME = re.compile(r"^(?P<name>[^_]+)(?P<late>_late)?_(?P<user>\d+)_(?P<submission>\d+)_(?P<file>.+)$", re.I)
+"""Canvas's name for a file in its "Download submissions" zip."""
 
 
 @dataclass
@@ -41,28 +53,66 @@ class Submission:
 
 COLUMNS = {"id": ("id", "student_id"), "name": ("name",), "email": ("email",), "section": ("section",),
            "login": ("sis_login_id", "login"), "canvas_id": ("canvas_id",)}
+CANVAS_COLUMNS = {"id": ("sis user id", "sis login id"), "name": ("student",), "email": ("email",),
+                  "section": ("section",), "login": ("sis login id",), "canvas_id": ("id",)}
+"""A Canvas gradebook export (Grades > Export) as a roster: its first columns name the students."""
+
+
+def read_table(path):
+    """``(columns, [(line number, {column: value})])`` of a CSV file in any common dialect.
+
+    The text is UTF-8 (with or without a byte order mark) or else Windows-1252, as older Excel
+    writes it; the delimiter (comma, semicolon, tab) is found by :class:`csv.Sniffer`. Column names
+    are stripped; empty rows are skipped.
+    """
+    path = pathlib.Path(path)
+    data = path.read_bytes()
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        text = data.decode("cp1252", errors="replace")
+    try:
+        dialect = csv.Sniffer().sniff(text[:8192], delimiters=",;\t")
+    except csv.Error:
+        dialect = csv.excel
+    reader = csv.reader(io.StringIO(text, newline=""), dialect)
+    rows = [(number, row) for number, row in enumerate(reader, start=1) if any(cell.strip() for cell in row)]
+    if not rows:
+        return [], []
+    (_, header), body = rows[0], rows[1:]
+    columns = [h.strip() for h in header]
+    return columns, [(number, {c: (row[i].strip() if i < len(row) else "") for i, c in enumerate(columns) if c})
+                     for number, row in body]
 
 
 def read_roster(path):
     """``{id: Student}`` from a CSV with columns ``id``, ``name`` and optionally ``email``, ``section``,
-    ``sis_login_id`` and ``canvas_id``. A missing column, an empty or repeated id is a ``ValueError``."""
+    ``sis_login_id`` and ``canvas_id``, or from a Canvas gradebook export. A missing column, an empty or
+    repeated id is a ``ValueError``."""
     path = pathlib.Path(path)
-    with open(path, newline="", encoding="utf-8-sig") as file:
-        reader = csv.DictReader(file)
-        header = [h.strip().lower() for h in reader.fieldnames or []]
-        where = {field: next((h for h in names if h in header), None) for field, names in COLUMNS.items()}
-        for field in ("id", "name"):
-            if where[field] is None:
-                raise ValueError(f"{path}: no `{field}` column (its columns: {', '.join(header) or 'none'})")
-        students, lines = {}, {}
-        for number, row in enumerate(reader, start=2):
-            row = {k.strip().lower(): (v or "").strip() for k, v in row.items() if k}
-            student = Student(**{field: row.get(column, "") for field, column in where.items() if column})
-            if not student.id:
-                raise ValueError(f"{path} line {number}: no id")
-            if student.id in students:
-                raise ValueError(f"{path} line {number}: id `{student.id}` appears twice (also on line {lines[student.id]})")
-            students[student.id], lines[student.id] = student, number
+    columns, rows = read_table(path)
+    header = [h.lower() for h in columns]
+    canvas = "sis user id" in header or "sis login id" in header
+    names = CANVAS_COLUMNS if canvas else COLUMNS
+    where = {field: next((columns[header.index(h)] for h in options if h in header), None)
+             for field, options in names.items()}
+    for field in ("id", "name"):
+        if where[field] is None:
+            raise ValueError(f"{path}: no `{field}` column (its columns: {', '.join(columns) or 'none'}); "
+                             "the first line must name the columns: id,name[,email,section,sis_login_id,canvas_id]")
+    students, lines = {}, {}
+    for number, row in rows:
+        if canvas and (row.get(where["name"], "").strip().lower() in ("points possible", "student, test", "test student")
+                       or not row.get(where["canvas_id"] or "", "x").strip()):
+            continue  # Canvas's rows that are no student
+        student = Student(**{field: row.get(column, "") for field, column in where.items() if column})
+        if canvas and not student.id:
+            student.id = row.get(where["login"] or "", "") or student.canvas_id
+        if not student.id:
+            raise ValueError(f"{path} line {number}: no id")
+        if student.id in students:
+            raise ValueError(f"{path} line {number}: id `{student.id}` appears twice (also on line {lines[student.id]})")
+        students[student.id], lines[student.id] = student, number
     return students
 
 
@@ -106,6 +156,46 @@ def _student(token, roster):
     return matches.pop() if len(matches) == 1 else None
 
 
+def _canvas(name, roster):
+    """The student a Canvas download's file name names (``None`` if it is no such name or names no one)."""
+    match = CANVAS_NAME.match(name)
+    if not match:
+        return None
+    if roster is None:
+        return match.group("name")
+    by_canvas = {s.canvas_id: s.id for s in roster.values() if s.canvas_id}
+    return by_canvas.get(match.group("user")) or _student(match.group("name"), roster)
+
+
+def _whose(path, folder, given, prefix, roster):
+    """``(student, problem)``: whose notebook this is, or why that cannot be said."""
+    named = _canvas(path.name, roster)
+    if named is None and prefix:
+        named = _student(prefix, roster) if roster is not None else None
+    if given:  # a notebook given by itself: its name, else its folder
+        token = prefix or folder
+        student = (_canvas(path.name, roster) or (_student(prefix, roster) if prefix else None)
+                   or _student(folder, roster))
+        return (student, None) if student else (None, f"no student in the roster matches `{token}`")
+    if folder is None:
+        if not prefix and not CANVAS_NAME.match(path.name):
+            return None, None
+        student = _canvas(path.name, roster) or _student(prefix, roster)
+        return (student, None) if student else (None, f"no student in the roster matches `{prefix}`")
+    owner = _student(folder, roster)
+    if roster is None and CANVAS_NAME.match(path.name):
+        owner = None  # a folder of Canvas's files (one assignment): the name says whose
+    if owner is not None:
+        if named is not None and named != owner:
+            return None, (f"the file names `{named}` but lies in the folder of `{owner}`; a file is credited only "
+                          f"to the student whose folder holds it")
+        return owner, None
+    if named is not None:
+        return named, None
+    return None, (f"no student in the roster matches the folder `{folder}`, nor the file's name" if roster is not None
+                  else f"whose is it? the folder `{folder}` holds Canvas's files, but this name is not Canvas's")
+
+
 def collect(arguments, chapters, roster=None):
     """``(submissions, problems)``: each notebook mapped to a student and a chapter, and what could not be."""
     problems, found = [], {}
@@ -117,14 +207,16 @@ def collect(arguments, chapters, roster=None):
                                 f"({', '.join(sorted(chapters))})")
                 continue
             prefix = path.stem[:at].rstrip("_-. ")
-            token = (prefix or folder) if given else folder if folder is not None else prefix
-            if not token:
+            match = CANVAS_NAME.match(path.name)
+            if match and chapter in match.group("file"):
+                prefix = ""  # the Canvas name is the whole prefix
+            student, problem = _whose(path, folder, given, prefix, roster)
+            if problem:
+                problems.append(f"{path}: not graded: {problem}")
+                continue
+            if student is None:
                 problems.append(f"{path}: not graded: whose is it? Put it in a folder named after the student "
                                 f"(alice/{path.name}) or name it alice_{chapter}.ipynb")
-                continue
-            student = _student(token, roster)
-            if student is None:
-                problems.append(f"{path}: not graded: no student in the roster matches `{token}`")
                 continue
             found.setdefault((student, chapter), []).append(path)
     submissions = []

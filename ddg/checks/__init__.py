@@ -32,7 +32,7 @@ grader from a secret seed, only the student's answer runs, in a sandbox, and the
 import numpy as np
 
 from . import comparing, curvatures, curves, geometry  # noqa: F401 (importing them registers their exercises)
-from .judge import EXERCISES, Feedback, judge
+from .judge import EXERCISES, CheckError, Feedback, judge
 from .runner import TIME_LIMIT, WriteItYourself, evaluate
 
 CHECKS = {f"check_{name}": name for name in EXERCISES}
@@ -59,7 +59,10 @@ def run(name, answer, seed=None, isolate=True):
         from .runner import answers
         raw = answers(answer, specs, geometry.build)
     label = getattr(answer, "__name__", name) if callable(answer) else name
-    return judge(exercise, calls, raw, label)
+    try:
+        return judge(exercise, calls, raw, label if isinstance(label, str) else name)
+    except CheckError as error:
+        return Feedback(name, problem=f"{error}: please tell your instructor", inputs=len(calls))
 
 
 def answer_results(name, answer, specs, limit=TIME_LIMIT):

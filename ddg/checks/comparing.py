@@ -8,12 +8,13 @@ import numpy as np
 
 from ..curve import DiscreteCurve, regular_polygon
 from . import geometry as g
-from .curvatures import READ_ONLY, shifted
+from .curvatures import READ_ONLY, shifted, wrap_around
 from .judge import Call, Exercise, Mistake
 
 
 class CircleCurvature(Exercise):
     name = "circle_curvature"
+    expects = "a curvature at every vertex of the closed curve, v_0 and v_(n-1) included"
 
     def draw(self, rng):
         n, r = int(rng.integers(3, 30)), float(rng.uniform(0.3, 3))
@@ -74,6 +75,7 @@ class CircleCurvature(Exercise):
                 "expected {want}, got {got})", predict=shifted(1)),
         Mistake("before", "every value is right but at the vertex before the one it belongs to (on {what}{at} "
                 "expected {want}, got {got})", predict=shifted(-1)),
+        *wrap_around("the curvatures"),
     )
 
 
@@ -83,6 +85,7 @@ ZIGZAG_N = (512, 1024, 2048, 4096)
 class ZigzagExponent(Exercise):
     name = "zigzag_exponent"
     unit = "b"
+    expects = "the exponent p, a single number"
 
     def draw(self, rng):
         # b > 1, on each side of b = 2 and b = 4, but not near them: there two kinds of error cross

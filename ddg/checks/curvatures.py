@@ -24,6 +24,19 @@ def shifted(direction):
     return lambda want, call: np.roll(want, direction, axis=0)
 
 
+def wrap_around(values):
+    """The closed curve's wrap-around forgotten, as it shows: ``values`` (at v_0 and v_(n-1)) wrong, or
+    one or both of them missing."""
+    why = (f"the wrap-around is missing: on a closed curve v_(-1) is v_(n-1) and v_n is v_0, so {values} at "
+           "v_0 and v_(n-1) exist too (np.roll wraps around; np.diff does not)")
+    return (Mistake("wrap-around", "the first and last vertices are wrong on {what}{at} (expected {want}, got {got}): "
+                    + why, test=ends_wrong),
+            Mistake("wrap-around", "the first and last vertices are missing on {what}: " + why,
+                    predict=lambda want, call: want[1:-1]),
+            Mistake("wrap-around", "the last vertex is missing on {what}: " + why, predict=lambda want, call: want[:-1]),
+            Mistake("wrap-around", "the first vertex is missing on {what}: " + why, predict=lambda want, call: want[1:]))
+
+
 def ends_wrong(got, want, call):
     """Right in the middle, wrong at the first or the last vertex: the closed curve not wrapped around."""
     inner = slice(1, -1)
@@ -33,6 +46,7 @@ def ends_wrong(got, want, call):
 
 class TurningAngles(Exercise):
     name = "turning_angles"
+    expects = "the closed curve turns at every vertex, v_0 and v_(n-1) included"
     forbidden = ("turning_angles", "curvature", "total_curvature", "turning_number", "bisector_normals")
 
     def draw(self, rng):
@@ -62,12 +76,12 @@ class TurningAngles(Exercise):
         Mistake("counter-clockwise", "the sign: psi is measured clockwise in this course, so {what} turns by "
                 "{want}{at}; yours turns by {got}, the usual counter-clockwise sign",
                 test=lambda got, want, call: bool(np.allclose(np.where(want == np.pi, 0, got + want), 0, atol=1e-5)
-                                                  and np.allclose(np.abs(got[want == np.pi]), np.pi, atol=1e-5))),
+                                                  and np.allclose(np.abs(got[want == np.pi]), np.pi, atol=1e-5)),
+                undo=lambda got, want, call: np.where(want == np.pi, np.abs(got), -got)),
         Mistake("unsigned", "the sign is lost: on {what}{at} the polygon turns counter-clockwise, psi = {want}, but "
                 "yours is {got}; arccos gives the size of a turn, not its direction (the cross product's sign "
                 "tells)", predict=lambda want, call: np.abs(want)),
-        Mistake("wrap-around", "the first and last vertices are wrong: on a closed curve v_(-1) is v_(n-1) and v_n "
-                "is v_0 (on {what}{at} psi = {want}, yours {got})", test=ends_wrong),
+        *wrap_around("the turning angles"),
         Mistake("after", "every value is right but at the vertex after the one it belongs to: psi_i belongs to "
                 "v_i, between e_(i-1/2) and e_(i+1/2) (on {what}{at} expected {want}, got {got})", predict=shifted(1)),
         Mistake("before", "every value is right but at the vertex before the one it belongs to: psi_i belongs to "
@@ -76,12 +90,14 @@ class TurningAngles(Exercise):
         Mistake("minus pi", "where a polygon turns straight back the angle is pi, the end of the range (-pi, pi] "
                 "that belongs to it: on {what}{at} yours is {got} (np.arctan2(-0.0, -1) gives -pi)",
                 test=lambda got, want, call: bool(np.allclose(np.where(want == np.pi, 0, got - want), 0, atol=1e-5)
-                                                  and np.all(np.isin(got[want == np.pi], (np.pi, -np.pi))))),
+                                                  and np.all(np.isin(got[want == np.pi], (np.pi, -np.pi)))),
+                undo=lambda got, want, call: np.where(want == np.pi, np.abs(got), got)),
         Mistake("range", "an angle outside (-pi, pi]: on {what}{at} you give {got} where {want}, the same turn "
                 "give or take 2 pi, was expected; bring differences of headings into (-pi, pi]",
                 test=lambda got, want, call: (got.shape == want.shape and np.allclose(
                     np.angle(np.exp(1j * (got - want))), 0, atol=1e-5)) and not (
-                    (got > -np.pi).all() and (got <= np.pi + 1e-9).all()) or np.allclose(got, want, atol=1e-5)),
+                    (got > -np.pi).all() and (got <= np.pi + 1e-9).all()) or np.allclose(got, want, atol=1e-5),
+                undo=lambda got, want, call: np.pi - np.mod(np.pi - got, 2 * np.pi)),
         Mistake("arccos NaN", "NaN on {what}{at}, where the polygon turns straight back: a cosine computed as "
                 "a.b / (|a| |b|) can round just below -1 there, and arccos of it is NaN; clip it to [-1, 1] (or "
                 "use np.arctan2)", test=lambda got, want, call: bool(
@@ -92,6 +108,7 @@ class TurningAngles(Exercise):
 
 class Rebuild(Exercise):
     name = "rebuild"
+    expects = "the points v_0 ... v_n, each (x, y): n + 1 rows of 2"
 
     def draw(self, rng):
         calls = [Call((g.array(np.full(4, np.pi / 2)), g.array(np.ones(4)), g.array(np.zeros(2)), np.pi / 2),
@@ -150,6 +167,7 @@ class Rebuild(Exercise):
 
 class LengthGradient(Exercise):
     name = "length_gradient"
+    expects = "a gradient vector (x, y) at every vertex of the closed curve, v_0 and v_(n-1) included"
     forbidden = ("length_gradient", "curvature", "laplacian")
 
     def draw(self, rng):
@@ -182,8 +200,7 @@ class LengthGradient(Exercise):
         Mistake("unit", "only the direction is right: your vectors have length 1, but the gradient's length is "
                 "the sine curvature 2 sin(psi_i / 2) / A_i (on {what}{at} expected {want}, got {got})",
                 predict=lambda want, call: want / np.linalg.norm(want, axis=1, keepdims=True)),
-        Mistake("wrap-around", "the first and last vertices are wrong: on a closed curve the edge e_(n-1/2) from "
-                "v_(n-1) back to v_0 belongs to both (on {what}{at} expected {want}, got {got})", test=ends_wrong),
+        *wrap_around("the gradient vectors"),
         Mistake("after", "every value is right but at the vertex after the one it belongs to (on {what}{at} "
                 "expected {want}, got {got})", predict=shifted(1)),
         Mistake("before", "every value is right but at the vertex before the one it belongs to (on {what}{at} "
@@ -193,6 +210,7 @@ class LengthGradient(Exercise):
 
 class MinkowskiArea(Exercise):
     name = "minkowski_area"
+    expects = "the area of the Minkowski sum, a single number"
     forbidden = ("inflated_area", "inflate")
     measures = ("shapely.buffer",)
     tolerance = 1e-6

@@ -8,13 +8,14 @@ import numpy as np
 
 from ..curve import DiscreteCurve
 from . import geometry as g
-from .curvatures import READ_ONLY, shifted
+from .curvatures import READ_ONLY, shifted, wrap_around
 from .judge import Call, Exercise, Mistake
 
 
 class OsculatingCenter(Exercise):
     name = "osculating_center"
     unit = "point"
+    expects = "one centre (x, y) for each parameter in t"
 
     def draw(self, rng):
         calls = []
@@ -74,6 +75,7 @@ class OsculatingCenter(Exercise):
 
 class Staircase(Exercise):
     name = "staircase"
+    expects = "8m vertices (x, y): a point on the ellipse, then a corner, 4m times"
 
     def draw(self, rng):
         calls = []
@@ -160,6 +162,7 @@ def normals(curve, method):
 
 class VertexNormals(Exercise):
     name = "vertex_normals"
+    expects = "a unit normal (x, y) at every vertex of the closed curve, v_0 and v_(n-1) included"
     forbidden = ("bisector_normals", "length_gradient", "curvature")
 
     def draw(self, rng):
@@ -200,4 +203,5 @@ class VertexNormals(Exercise):
         Mistake("unnormalized", "not unit vectors: divide each by its length (on {what}{at} expected {want}, got "
                 "{got})", test=lambda got, want, call: got.shape == want.shape and np.allclose(
                     got / np.linalg.norm(got, axis=1, keepdims=True), want, atol=1e-5)),
+        *wrap_around("the normals"),
     )

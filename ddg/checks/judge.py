@@ -43,6 +43,7 @@ class Mistake:
     test: object = None
     error: str = ""
     across: object = None  # ``across(gots, wants, calls)``, for a mistake seen only across the inputs
+    undo: object = None  # ``undo(got, want, call)``: the answer without this mistake (for one seen by ``test``)
 
 
 @dataclass
@@ -105,6 +106,7 @@ class Exercise:
     measures = ()  # "module.attribute" callables that measure what the answer must compute
     mistakes = ()
     unit = "vertex"  # what an index of the answer counts, for messages
+    expects = "one value at every vertex"  # what a right answer returns, for a student who returned another shape
     tolerance = 1e-5  # relative to the scale of the expected values (float32 answers agree to 1e-7)
 
     def draw(self, rng):
@@ -130,8 +132,16 @@ class Exercise:
         return int(np.flatnonzero(wrong | np.isnan(got).reshape(len(got), -1).any(axis=1))[0])
 
 
+class CheckError(Exception):
+    """A fault of the check itself (never of the answer): raised only for a bug in ``ddg.checks``."""
+
+
 def judge(exercise, calls, raw, name=None):
-    """The :class:`Feedback` for the raw results of ``exercise`` on ``calls`` (see ``runner.evaluate``)."""
+    """The :class:`Feedback` for the raw results of ``exercise`` on ``calls`` (see ``runner.evaluate``).
+
+    Total: whatever ``raw`` holds (the answer's process may send anything) gets a verdict. Only a
+    fault of the check's own code raises, as :class:`CheckError`.
+    """
     feedback = Feedback(name or exercise.name, inputs=len(calls))
     if isinstance(raw, dict):
         if isinstance(raw.get("timeout"), (int, float)):
@@ -139,17 +149,25 @@ def judge(exercise, calls, raw, name=None):
         elif raw.get("exited") is True:
             feedback.problem = "it ended the process it ran in (os._exit, or a crash)"
         else:
-            feedback.problem = str(raw.get("error", "the answer's process sent back something that is not its results"))
+            feedback.problem = printable(raw.get("error", "the answer's process sent back something that is not "
+                                                          "its results"))[:400]
         return feedback
-    if not runner.well_formed(raw):  # results read back from elsewhere (the grader's sandbox)
+    if not runner.well_formed(raw) or len(raw) > len(calls):  # results read back from elsewhere (the grader's sandbox)
         feedback.problem = "the process the answer ran in sent back something that is not its results"
         return feedback
     if len(raw) < len(calls) and (not raw or "missing" in raw[-1]) or any("missing" in r for r in raw):
         feedback.problem = "not written yet: replace `raise NotImplementedError` with your code"
         return feedback
-    with np.errstate(all="ignore"):  # whatever the notebook set: the verdict's arithmetic never raises
-        feedback.problem = _verdict(exercise, calls, raw)
-    if any(r.get("mutated") for r in raw):
+    if len(raw) < len(calls):
+        feedback.problem = "the process the answer ran in sent back something that is not its results"
+        return feedback
+    try:
+        with np.errstate(all="ignore"):  # whatever the notebook set: the verdict's arithmetic never raises
+            feedback.problem = _verdict(exercise, calls, raw)
+    except Exception as error:  # noqa: BLE001 - a bug of the check, said as such
+        raise CheckError(f"the check of {exercise.name} failed on its own ({type(error).__name__}: {error}); "
+                         "this is a fault of the check, not of the answer") from error
+    if any(r.get("mutated") is True for r in raw):
         feedback.notes.append("your function changes the array it is given (in place): work on a copy, as the "
                               "caller still needs it (np.array(vertices) copies)")
     if feedback.passed and any(r.get("type") in ("list", "tuple") for r in raw):
@@ -158,32 +176,87 @@ def judge(exercise, calls, raw, name=None):
     return feedback
 
 
+def result_array(entry):
+    """The one door every result passes through before it is compared: ``(array, problem)``.
+
+    ``array`` is the result as a float array (``None`` if it is none); ``problem`` says, in the
+    student's terms, what else it is. Whatever ``entry`` holds (forged on a pipe, nested, ragged,
+    text, objects, huge), this returns.
+    """
+    value = entry.get("value") if isinstance(entry, dict) else None
+    try:
+        array = np.asarray(value)
+        if array.dtype.kind not in "biuf":
+            raise TypeError(array.dtype.kind)
+        array = array.astype(float)
+    except (TypeError, ValueError, OverflowError, RecursionError, MemoryError):
+        return None, "it returned nested lists of different lengths or things that are not numbers, not an array"
+    return array, None
+
+
+def _expected(exercise, call):
+    return np.asarray(exercise.expected(call), dtype=float)
+
+
+def _count(array):
+    """An array's shape in words: "one number", "3 numbers", "4 rows of 2", "an array of shape (2, 2, 2)"."""
+    if array.ndim == 0:
+        return "one number"
+    if array.ndim == 1:
+        return f"{len(array)} number{'s' * (len(array) != 1)}"
+    if array.ndim == 2:
+        return f"{len(array)} row{'s' * (len(array) != 1)} of {array.shape[1]}"
+    return f"an array of shape {array.shape}"
+
+
+def shape_problem(exercise, got, want, call):
+    """What is wrong with the shape of ``got``, in the student's terms (``None`` if it is right)."""
+    if got is None:
+        return f"on {call.what} it returned nested lists of different lengths or things that are not numbers"
+    if got.shape == want.shape:
+        return None
+    if want.ndim == 0:
+        return f"on {call.what} it returned {_count(got)} where one number was expected: {exercise.expects}"
+    unit = exercise.unit
+    wanted = f"{_count(want)} (one per {unit})"
+    if got.ndim == 0:
+        return f"on {call.what} it returned one number where {wanted} were expected: {exercise.expects}"
+    if len(got) != len(want):
+        return f"you returned {_count(got)} for {call.what}, where {wanted} were expected: {exercise.expects}"
+    each = "one number" if want.ndim == 1 else f"{want.shape[1]} numbers" if want.ndim == 2 else f"shape {want.shape[1:]}"
+    return (f"on {call.what} it returned {_count(got)}, the right count, but each {unit} needs {each}: "
+            f"{exercise.expects}")
+
+
 def _verdict(exercise, calls, raw):
     """``None`` if every result is right, else what is wrong, most specific cause first."""
     errors = [(i, r) for i, r in enumerate(raw) if "error" in r]
     if errors:
         i, r = errors[0]
         for mistake in exercise.mistakes:
-            if mistake.error and re.search(mistake.error, r["error"]):
+            if mistake.error and _safe(lambda m=mistake: re.search(m.error, r["error"])):
                 return _say(mistake, calls[i], None, None, None, exercise)
         if r["kind"] == "type":
-            return f"on {calls[i].what}: {r['error']}"
-        return f"on {calls[i].what} it raised {r['kind']}: {r['error']}"
-    got = [np.asarray(r["value"], dtype=float) if _rectangular(r["value"]) else None for r in raw]
-    want = [np.asarray(exercise.expected(call), dtype=float) for call in calls]
+            return f"on {calls[i].what}: {printable(r['error'])}"
+        return f"on {calls[i].what} it raised {printable(r['kind'])[:60]}: {printable(r['error'])}"
+    got = [result_array(r)[0] for r in raw]
+    want = [_expected(exercise, call) for call in calls]
     right = [_right(exercise, g, w, c) for g, w, c in zip(got, want, calls, strict=True)]
     if all(right):
         return None
     first = right.index(False)
     for mistake in exercise.mistakes:
-        if not mistake.error and _shows(mistake, got, want, calls, exercise):
+        if not mistake.error and _safe(lambda m=mistake: _shows(m, got, want, calls, exercise)):
             g, w = got[first], want[first]
             return _say(mistake, calls[first], g, w, _place(exercise, g, w, calls[first]), exercise)
+    paired = _pair(exercise, got, want, calls)
+    if paired:
+        return paired
+    for g, w, call in zip(got, want, calls, strict=True):
+        problem = shape_problem(exercise, g, w, call)
+        if problem:
+            return problem
     g, w, call = got[first], want[first], calls[first]
-    if g is None:
-        return f"on {call.what} it returned nested lists of different lengths, not an array"
-    if g.shape != w.shape:
-        return f"on {call.what} the answer should have shape {w.shape}, got {g.shape}"
     if not np.isfinite(g).all():
         at = int(np.flatnonzero(~np.isfinite(g).reshape(len(g), -1).all(axis=1))[0]) if g.ndim else None
         return f"on {call.what} it contains NaN or infinity{_at(exercise, at)}"
@@ -192,28 +265,31 @@ def _verdict(exercise, calls, raw):
             f"got {short(g if at is None else g[at])}")
 
 
+def _safe(test):
+    """``test()``, or ``False`` where a mistake's recogniser cannot apply to this answer (it raised)."""
+    try:
+        return bool(test())
+    except Exception:  # noqa: BLE001 - a prediction that does not fit this answer's shape is no match
+        return False
+
+
 def right_inputs(exercise, calls, raw):
     """For each input, whether the answer's result was right (for partial credit): all ``False``
     when the whole run failed, and for any input it raised on or did not reach."""
-    if not isinstance(raw, list) or not runner.well_formed(raw):
+    if not isinstance(raw, list) or not runner.well_formed(raw) or len(raw) > len(calls):
         return [False] * len(calls)
-    with np.errstate(all="ignore"):
-        return [i < len(raw) and "value" in raw[i] and _rectangular(raw[i]["value"])
-                and _right(exercise, np.asarray(raw[i]["value"], dtype=float),
-                           np.asarray(exercise.expected(call), dtype=float), call)
-                for i, call in enumerate(calls)]
+    try:
+        with np.errstate(all="ignore"):
+            return [i < len(raw) and "value" in raw[i]
+                    and _right(exercise, result_array(raw[i])[0], _expected(exercise, call), call)
+                    for i, call in enumerate(calls)]
+    except Exception as error:  # noqa: BLE001 - a bug of the check, said as such
+        raise CheckError(f"the check of {exercise.name} failed on its own ({type(error).__name__}: {error})") from error
 
 
 def _right(exercise, got, want, call):
-    return got is not None and got.shape == want.shape and bool(np.isfinite(got).all()) and exercise.close(got, want, call)
-
-
-def _rectangular(value):
-    try:
-        np.asarray(value, dtype=float)
-    except ValueError:
-        return False
-    return True
+    return (got is not None and got.shape == want.shape and bool(np.isfinite(got).all())
+            and _safe(lambda: exercise.close(got, want, call)))
 
 
 def _prediction(mistake, got, want, call):
@@ -221,25 +297,69 @@ def _prediction(mistake, got, want, call):
     return want if predicted is None else np.asarray(predicted, dtype=float)
 
 
+def _matches(mistake, got, want, call, exercise):
+    """Whether ``got`` is what ``mistake`` makes of ``want`` on one input."""
+    if got is None:
+        return False
+    if mistake.test is not None:
+        return bool(mistake.test(got, want, call))
+    p = _prediction(mistake, got, want, call)
+    if got.shape != p.shape or not np.all(np.isfinite(got) == np.isfinite(p)):
+        return False
+    finite = np.isfinite(p)
+    return exercise.close(np.where(finite, got, 0), np.where(finite, p, 0), call)
+
+
 def _shows(mistake, got, want, calls, exercise):
     """Whether the answer shows ``mistake`` on every input (and is right where it cannot show)."""
     if mistake.across is not None:
         return all(g is not None for g in got) and mistake.across(got, want, calls)
-    for g, w, call in zip(got, want, calls, strict=True):
-        if g is None:
-            return False
-        if mistake.test is not None:
-            if not mistake.test(g, w, call):
-                return False
+    if not all(_matches(mistake, g, w, call, exercise) for g, w, call in zip(got, want, calls, strict=True)):
+        return False
+    return any(not _right(exercise, g, w, c) for g, w, c in zip(got, want, calls, strict=True))
+
+
+def _pair(exercise, got, want, calls):
+    """Two catalogued mistakes at once, ``a`` then ``b``: ``b`` is seen on what ``a`` makes of the right
+    answer (``a.predict``), or on the answer with ``a`` undone (``a.undo``, for a mistake recognised
+    by a ``test``). The message names both, or ``None`` if no pair explains the answer."""
+    candidates = [m for m in exercise.mistakes if not m.error and m.across is None]
+    for a in candidates:
+        try:
+            if a.predict is not None:
+                pairs = [(g, _prediction(a, None, w, c)) for g, w, c in zip(got, want, calls, strict=True)]
+            elif a.undo is not None:
+                pairs = [(np.asarray(a.undo(g, w, c), dtype=float), w) for g, w, c in zip(got, want, calls, strict=True)]
+            else:
+                continue
+        except Exception:  # noqa: BLE001 - the mistake does not apply to this answer's shape
             continue
-        p = _prediction(mistake, g, w, call)
-        if g.shape != p.shape or not np.all(np.isfinite(g) == np.isfinite(p)):
-            return False
-        finite = np.isfinite(p)
-        if not exercise.close(np.where(finite, g, 0), np.where(finite, p, 0), call):
-            return False
-    return any(g is not None and (g.shape != w.shape or not exercise.close(g, w, c))
-               for g, w, c in zip(got, want, calls, strict=True))
+        if all(x.shape == y.shape and np.allclose(x, y, equal_nan=True) for x, y in
+               ((p, w) if a.predict is not None else (g, p) for (g, p), w in zip(pairs, want, strict=True))):
+            continue  # a does not show: the pair would be b alone, which did not match
+        for b in candidates:
+            if b is a or b.name == a.name:
+                continue
+            if _safe(lambda b=b: all(_matches(b, g, w, c, exercise) for (g, w), c in zip(pairs, calls, strict=True))):
+                if a.predict is not None:  # a shows where its prediction differs from the right answer
+                    i, at = _differ(exercise, [p for _, p in pairs], want, calls)
+                else:  # a shows where undoing it changes the answer
+                    i, at = _differ(exercise, [g for g, _ in pairs], got, calls)
+                j, bt = _differ(exercise, got, [p if a.predict is not None else w for (_, p), w in
+                                                zip(pairs, want, strict=True)], calls)
+                return (f"two mistakes at once. First, {_say(a, calls[i], got[i], want[i], at, exercise)}. "
+                        f"Second, {_say(b, calls[j], got[j], want[j], bt, exercise)}")
+    return None
+
+
+def _differ(exercise, xs, ys, calls):
+    """The first input where ``xs`` and ``ys`` differ, and the place there (``None`` where the shapes differ)."""
+    for i, (x, y, call) in enumerate(zip(xs, ys, calls, strict=True)):
+        if x.shape != y.shape:
+            return i, None
+        if not _safe(lambda: exercise.close(x, y, call)):
+            return i, _place(exercise, x, y, call)
+    return 0, None
 
 
 def _place(exercise, got, want, call):
@@ -249,7 +369,10 @@ def _place(exercise, got, want, call):
     finite = np.isfinite(got).reshape(len(got), -1).all(axis=1)
     if not finite.all():
         return int(np.flatnonzero(~finite)[0])
-    return exercise.where(got, want, call)
+    try:
+        return exercise.where(got, want, call)
+    except (IndexError, ValueError):
+        return None
 
 
 def _at(exercise, at):
@@ -258,6 +381,12 @@ def _at(exercise, at):
 
 def _say(mistake, call, got, want, at, exercise):
     """The mistake's message, filled in."""
-    pick = (lambda x: x) if at is None else (lambda x: x[at] if x is not None and x.ndim and len(x) > at else x)
+    def pick(x):
+        if x is None:
+            return None
+        try:
+            return x[at] if at is not None and x.ndim and len(x) > at else x
+        except (IndexError, TypeError):
+            return x
     return mistake.message.format(what=call.what, at=_at(exercise, at), want=short(pick(want)) if want is not None
                                   else "", got=short(pick(got)) if got is not None else "", index=at)

@@ -94,15 +94,35 @@ def answer_all(answer, inputs):
     return results
 
 
+RESULT_LIMIT = 1_000_000
+"""Numbers an answer's result may hold: far more than any exercise asks for."""
+
+
 def plain(value):
-    """What an answer returned, as JSON-ready numbers and its type (or a description of what it was)."""
+    """What an answer returned, as JSON-ready numbers and its type (or a description of what it was).
+
+    Real numbers only: text that looks like a number, complex numbers, ``None`` and other objects
+    inside a list are described, never converted.
+    """
     kind = type(value).__name__
     try:
-        if np.iscomplexobj(value):
+        if isinstance(value, (str, bytes)):
             raise TypeError
-        array = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        return {"error": f"it returned {kind} {str(value)[:40]!r}, not real numbers", "kind": "type"}
+        array = np.asarray(value)
+        if array.dtype.kind == "O" and all(isinstance(x, (int, float, np.integer, np.floating)) and not isinstance(x, bool)
+                                           for x in array.ravel()[:RESULT_LIMIT]):
+            array = array.astype(float)
+        if array.dtype.kind not in "biuf":
+            raise TypeError
+        if array.size > RESULT_LIMIT:
+            return {"error": f"it returned {array.size} numbers, far more than any exercise asks for", "kind": "type"}
+        array = array.astype(float)
+    except BaseException:  # noqa: BLE001 - an object's own __array__ or __float__ may raise anything
+        try:
+            shown = repr(str(value)[:40])
+        except BaseException:  # noqa: BLE001
+            shown = ""
+        return {"error": f"it returned {kind} {shown}, not real numbers".replace("  ", " "), "kind": "type"}
     return {"value": array.tolist(), "type": kind}
 
 
