@@ -391,3 +391,67 @@ CATALOGUE = {  # exercise: (right answers besides the reference, {mistake: (answ
     "zigzag_exponent": ([named("zigzag_numpy", lambda b: float(np.clip(2 - b, -2, None)))], ZIGZAG),
 }
 SCALAR = {"minkowski_area", "zigzag_exponent"}  # answers that return one number: no list version
+
+
+# ------------------------------------------------------------------------ two mistakes at once
+
+
+def both(name, change):
+    """The reference answer of ``name`` with its result changed by ``change(result, *args)``."""
+    return lambda *args: change(np.asarray(REFERENCE[name](*args), dtype=float), *args)
+
+
+def open_ends(result):
+    result = np.array(result)
+    result[[0, -1]] = 0.0
+    return result
+
+
+def minus_pi(result):
+    return np.where(result == np.pi, -np.pi, result)
+
+
+def mirrored_rebuild(psi, lengths, start, heading):  # the turns added to the heading, not subtracted
+    steps = lengths * np.exp(1j * (heading + np.cumsum(np.r_[0.0, psi[1:]])))
+    z = complex(*start) + np.r_[0, np.cumsum(steps)]
+    return np.stack([z.real, z.imag], axis=1)
+
+
+PAIRS = {  # exercise: {pair: (answer, [words of the first mistake, words of the second])}
+    "turning_angles": {
+        "degrees_and_after": (both("turning_angles", lambda r, v: np.roll(np.degrees(r), 1)), ["degrees", "vertex after"]),
+        "counterclockwise_and_open": (both("turning_angles", lambda r, v: open_ends(-r)),
+                                      ["measured clockwise", "first and last vertices"]),
+        "minus_pi_and_open": (both("turning_angles", lambda r, v: open_ends(minus_pi(r))),
+                              ["turns straight back", "first and last vertices"]),
+        "unsigned_and_before": (both("turning_angles", lambda r, v: np.roll(np.abs(r), -1)),
+                                ["sign is lost", "vertex before"]),
+        "degrees_and_ends_missing": (both("turning_angles", lambda r, v: np.degrees(r)[1:-1]),
+                                     ["degrees", "wrap-around"]),
+    },
+    "length_gradient": {
+        "sign_and_after": (both("length_gradient", lambda r, v: np.roll(-r, 1, axis=0)), ["wrong way", "vertex after"]),
+        "euclidean_and_ends_missing": (
+            both("length_gradient", lambda r, v: (r * ddg.DiscreteCurve(v).dual_lengths[:, None])[1:-1]),
+            ["weights are missing", "wrap-around"]),
+    },
+    "circle_curvature": {
+        "counterclockwise_and_after": (both("circle_curvature", lambda r, c: np.roll(-r, 1)), ["the sign", "vertex after"]),
+        "half_and_open": (both("circle_curvature", lambda r, c: open_ends(r / 2)), ["factor of 2", "first and last"]),
+    },
+    "vertex_normals": {
+        "inward_and_open": (both("vertex_normals", lambda r, c, m: open_ends(-r)), ["inward", "first and last"]),
+    },
+    "rebuild": {
+        "counterclockwise_and_no_last_vertex": (lambda *args: mirrored_rebuild(*args)[:-1], ["wrong way", "v_n"]),
+    },
+    "staircase": {
+        "inner_corners_and_starting_at_a_corner": (
+            lambda curve, m: np.roll(staircase_corners(curve, m, inner), 1, axis=0),
+            ["inside the ellipse", "v[0] should be"]),
+    },
+    "osculating_center": {
+        "outward_and_vector": (lambda curve, t: curve.position(t) + curve.normal(t) / curve.curvature(t)[:, None]
+                               - curve.position(t), ["wrong side", "is a point"]),
+    },
+}

@@ -13,7 +13,7 @@ import re
 
 import pytest
 import shapely
-from catalogue import CATALOGUE, REFERENCE, SCALAR, as_float32, as_list, named, ref, solution_cells, starter_of, times
+from catalogue import CATALOGUE, PAIRS, REFERENCE, SCALAR, as_float32, as_list, named, ref, solution_cells, starter_of, times
 
 from ddg import checks
 
@@ -73,6 +73,23 @@ def test_every_mistake_fails_and_is_named_on_100_seeds(name, mistake, answer, wo
         if feedback or words not in feedback.problem:
             wrong[seed] = repr(feedback)
     assert not wrong, f"{name}, {mistake}: not named on {len(wrong)} seeds, e.g. {next(iter(wrong.items()))}"
+
+
+PAIRED = [(name, pair, answer, words) for name, pairs in sorted(PAIRS.items())
+          for pair, (answer, words) in pairs.items()]
+
+
+@pytest.mark.parametrize("name, pair, answer, words", PAIRED, ids=[f"{n}-{p}" for n, p, _, _ in PAIRED])
+def test_two_mistakes_at_once_are_both_named_on_100_seeds(name, pair, answer, words):
+    """A sign or range convention together with an index or wrap-around slip: both named."""
+    answer = named(pair, answer)
+    wrong = {}
+    for seed in SEEDS:
+        feedback = checks.run(name, answer, seed, isolate=False)
+        if feedback or not feedback.problem.startswith("two mistakes at once") or not all(
+                w in feedback.problem for w in words):
+            wrong[seed] = repr(feedback)
+    assert not wrong, f"{name}, {pair}: not named on {len(wrong)} seeds, e.g. {next(iter(wrong.items()))}"
 
 
 @pytest.mark.parametrize("name", sorted(CATALOGUE))
