@@ -16,6 +16,7 @@ drops what an earlier run or the instructor put there (:func:`load_state`, :func
 
 import csv
 import datetime
+import difflib
 import hashlib
 import json
 import math
@@ -147,8 +148,9 @@ def late(policy, student, chapter):
 def read_manual(path, table, students):
     """``{(student, label): score}`` from a CSV with ``student_id`` and a column per written exercise.
 
-    Columns grades.csv has (so that a filled-in copy of it can be read back) are ignored; any other
-    column, an unknown student, a score that is not a number or is out of range is a ``ValueError``.
+    Columns grades.csv has (so that a filled-in copy of it can be read back) and columns that are no
+    exercise (a comment, an email) are ignored; a column that looks like a mistyped exercise label, an
+    unknown student, a score that is not a number or is out of range is a ``ValueError``.
     A decimal comma (``1,5``) is read as a decimal point. An empty cell changes nothing.
     """
     written = {label: points for chapter in table.values() for label, points in chapter["written"].items()}
@@ -158,11 +160,14 @@ def read_manual(path, table, students):
     key = next((f for f in fields if f.lower() in ("student_id", "id")), None)
     if key is None:
         raise ValueError(f"{path}: no student_id column (its columns: {', '.join(fields)})")
+    labels = [*written, *coding]
     strange = [f for f in fields if f not in written and f not in coding and f != key
-               and f.lower() not in ("name", "late_days", "penalty", "total")]
-    if strange:
-        raise ValueError(f"{path}: `{strange[0]}` is no written exercise of the book "
-                         f"(written exercises: {', '.join(sorted(written))})")
+               and (f.lower().startswith("ex-") or difflib.get_close_matches(f, labels, n=1, cutoff=0.75))]
+    if strange:  # a label mistyped would silently score nothing; other columns (comments, email) are left alone
+        near = difflib.get_close_matches(strange[0], labels, n=1, cutoff=0.6)
+        raise ValueError(f"{path}: `{strange[0]}` is no written exercise of the book"
+                         + (f" (did you mean `{near[0]}`?)" if near else "")
+                         + f" (written exercises: {', '.join(sorted(written))})")
     for number, row in rows:
         student = row.get(key, "")
         if student not in students:

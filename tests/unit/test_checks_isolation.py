@@ -107,7 +107,7 @@ def test_the_verdict_does_not_depend_on_state_the_answer_can_reach():
 def test_crashing_exiting_and_odd_answers_are_reported_not_raised():
     cases = [(lambda v: v[10**6], "raised IndexError"), (lambda v: os._exit(3), "ended the process"),
              (lambda v: sys.exit(1), "raised SystemExit"), (lambda v: "psi", "not real numbers"),
-             (lambda v: np.zeros(len(v)) * 1j, "not real numbers"), (lambda v: [1.0], "shape"),
+             (lambda v: np.zeros(len(v)) * 1j, "not real numbers"), (lambda v: [1.0], "you returned 1 number"),
              (lambda v: np.full(len(v), np.nan), "NaN"), (2.0, "should be a function")]
     for answer, expected in cases:
         feedback = checks.check_turning_angles(answer, seed=0)
