@@ -18,6 +18,12 @@ Results are cached per notebook content (``DIR/cache``): a second run grades onl
 a class over machines. The grades, the Canvas file, the feedback and the class report are written
 by ``instructor/exports.py`` and ``instructor/report.py``; ``--gradescope-autograder`` writes a
 Gradescope autograder instead (``instructor/gradescope.py``).
+
+One submission never stops a class: whatever happens to it (a crash of the grader's own code
+included, :func:`grade_safely`), the others are graded and every file is written. What the
+instructor entered and each submission's latest result are kept in ``DIR`` for every later run
+(``exports.load_state``). The exit code is 0 when every notebook was graded, 3 when one needs the
+instructor (not graded, listed in ``problems.txt``, or failed by the grader), 2 for bad options.
 """
 
 import argparse
