@@ -340,7 +340,7 @@ def _pair(exercise, got, want, calls):
         for b in candidates:
             if b is a or b.name == a.name:
                 continue
-            if _safe(lambda b=b: all(_matches(b, g, w, c, exercise) for (g, w), c in zip(pairs, calls, strict=True))):
+            if _safe(lambda b=b, pairs=pairs: all(_matches(b, g, w, c, exercise) for (g, w), c in zip(pairs, calls, strict=True))):
                 if a.predict is not None:  # a shows where its prediction differs from the right answer
                     i, at = _differ(exercise, [p for _, p in pairs], want, calls)
                 else:  # a shows where undoing it changes the answer
@@ -357,7 +357,7 @@ def _differ(exercise, xs, ys, calls):
     for i, (x, y, call) in enumerate(zip(xs, ys, calls, strict=True)):
         if x.shape != y.shape:
             return i, None
-        if not _safe(lambda: exercise.close(x, y, call)):
+        if not _safe(lambda x=x, y=y, call=call: exercise.close(x, y, call)):
             return i, _place(exercise, x, y, call)
     return 0, None
 

@@ -126,7 +126,7 @@ def test_feedback_says_what_happened_for_every_way_a_notebook_fails(tmp_path):
     helper = "import numpy as np\n\n\ndef prepare(vertices):\n    return np.asarray(vertices, dtype=float)\n\n\n"
     (subs / "corrupt").mkdir(parents=True)
     (subs / "corrupt" / NOTEBOOK).write_text('{"cells": [')
-    syntax = submission(subs / "syntax" / NOTEBOOK, {"turning_angles": "def turning_angles(vertices)\n    return 0\n"})
+    submission(subs / "syntax" / NOTEBOOK, {"turning_angles": "def turning_angles(vertices)\n    return 0\n"})
     submission(subs / "old" / NOTEBOOK, drop=("rebuild",))
     submission(subs / "wrong" / NOTEBOOK, {"rebuild": reference["rebuild"].replace("heading - ", "heading + ")})
     submission(subs / "looping" / NOTEBOOK, {"turning_angles": reference["turning_angles"] + needs},
