@@ -288,7 +288,7 @@ def write_feedback(records, rows, table, roster, out):
                  f"score: {score}"]
         if info["late_days"]:
             lines.append(f"late by {info['late_days']} day{'s' * (info['late_days'] > 1)}: "
-                         f"{_number(info['penalty'])} points off")
+                         f"{_number(info['penalty'])} point{'s' * (info['penalty'] != 1)} off")
         lines += ["", *record["lines"]]
         if written:
             lines += ["", "written exercises (scored by hand):"]

@@ -521,7 +521,8 @@ def main(argv=None):
     for path in written:
         print(f"  {path.resolve()}")
     if problems:
-        print(f"{len(problems)} notebooks need you (also in {(out / 'problems.txt').resolve()}):")
+        print(f"{len(problems)} notebook{'s' * (len(problems) != 1)} need{'s' * (len(problems) == 1)} you (also in "
+              f"{(out / 'problems.txt').resolve()}):")
         for problem in problems:
             print(f"  {problem}")
         return 3
@@ -529,4 +530,8 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except BrokenPipeError:  # the output piped into `head` and the like, which stopped reading
+        sys.stderr.close()
+        sys.exit(0)

@@ -10,8 +10,10 @@ A submission belongs to
   ``<lastfirst>[_late]_<canvas user id>_<submission id>_<file name>``. A notebook given by itself
   (``submissions/*/*.ipynb``) belongs to the name in front of the chapter, or else to its folder.
 
-With a roster, that name must be a student's ``id`` (or ``canvas_id``), or contain exactly one as
-a part between underscores. A folder that is no student of the roster (``submissions/hw3/``, as
+With a roster, that name must name exactly one student: the ``id``, ``canvas_id``, login or email
+(or the part before its @), or the name, first-last or last-first, in any case, with or without
+spaces and accents (``Bob Becker``, ``beckerbob``); or contain exactly one such name as a part
+between underscores. A folder that is no student of the roster (``submissions/hw3/``, as
 Canvas's zip of one assignment unpacks) is a folder of files whose names say whose they are. A file
 is never credited to another student than the one whose folder holds it:
 ``alice/bob_03_winding_number.ipynb`` is reported, not graded. The chapter is the chapter of the book
@@ -28,6 +30,7 @@ import csv
 import io
 import pathlib
 import re
+import unicodedata
 from dataclasses import dataclass
 
 CANVAS_NAME = re.compile(r"^(?P<name>[^_]+)(?P<late>_late)?_(?P<user>\d+)_(?P<submission>\d+)_(?P<file>.+)$", re.I)
@@ -71,10 +74,12 @@ def read_table(path):
         text = data.decode("utf-8-sig")
     except UnicodeDecodeError:
         text = data.decode("cp1252", errors="replace")
-    try:
-        dialect = csv.Sniffer().sniff(text[:8192], delimiters=",;\t")
+    header = text.lstrip("\r\n").splitlines()[0] if text.strip() else ""
+    try:  # the header line alone: a quoted comment with a semicolon further down cannot mislead it
+        dialect = csv.Sniffer().sniff(header, delimiters=",;\t")
     except csv.Error:
         dialect = csv.excel
+    dialect.quotechar, dialect.doublequote = '"', True
     reader = csv.reader(io.StringIO(text, newline=""), dialect)
     rows = [(number, row) for number, row in enumerate(reader, start=1) if any(cell.strip() for cell in row)]
     if not rows:
@@ -142,17 +147,38 @@ def _chapter(name, chapters):
     return chapter, at
 
 
+def _plain(text):
+    """Letters and digits only, lower case, accents dropped: how Canvas writes a name (``duboischloe``)."""
+    return "".join(c for c in unicodedata.normalize("NFKD", text).lower() if c.isalnum())
+
+
+def _aliases(roster):
+    """Every name a folder or file may give a student by, that names one student only: the id, the
+    ``canvas_id``, the login, the email and its part before the @, and the name, first-last or last-first."""
+    found = {}
+    for student in roster.values():
+        words = student.name.replace(",", " ").split()
+        names = {student.id, student.canvas_id, student.login, student.email, student.email.split("@")[0],
+                 _plain(student.name), _plain("".join(words[1:] + words[:1])) if words else "",
+                 _plain("".join(words[-1:] + words[:-1])) if words else ""}
+        for alias in names - {""}:
+            found.setdefault(alias, set()).add(student.id)
+    return {alias: ids.pop() for alias, ids in found.items() if len(ids) == 1}
+
+
 def _student(token, roster):
-    """The roster id ``token`` names (itself, a canvas_id, or exactly one underscore-separated part of it)."""
+    """The roster id ``token`` names (an id, canvas_id, login, email or name of exactly one student,
+    itself or as exactly one underscore-separated part of it)."""
     if roster is None:
         return token
     if token in roster:
         return token
-    by_canvas = {s.canvas_id: s.id for s in roster.values() if s.canvas_id}
-    if token in by_canvas:
-        return by_canvas[token]
+    aliases = _aliases(roster)
+    for form in (token, _plain(token)):
+        if form in aliases:
+            return aliases[form]
     parts = {p for p in token.split("_") if p}
-    matches = {p for p in parts if p in roster} | {by_canvas[p] for p in parts if p in by_canvas}
+    matches = {roster_id for p in parts for roster_id in (p if p in roster else aliases.get(p),) if roster_id}
     return matches.pop() if len(matches) == 1 else None
 
 

@@ -122,6 +122,8 @@ def plain(value):
             shown = repr(str(value)[:40])
         except BaseException:  # noqa: BLE001
             shown = ""
+        if value is None:
+            return {"error": "it returned None, not real numbers (a missing `return`?)", "kind": "type"}
         return {"error": f"it returned {kind} {shown}, not real numbers".replace("  ", " "), "kind": "type"}
     return {"value": array.tolist(), "type": kind}
 
