@@ -456,8 +456,8 @@ def main(argv=None):
                 raise ValueError(f"--canvas-column {text}: give CHAPTER=HEADER with a chapter of the book "
                                  f"({', '.join(sorted(table))}) and the assignment's column header in Canvas")
             state["canvas_columns"][chapter] = header.strip()
-        students = set(roster or ()) | {s.student for s in submissions} | {
-            r["student"] for r in exports.load_records(out).values()}
+        earlier = exports.load_records(out)  # every submission's result from earlier runs
+        students = set(roster or ()) | {s.student for s in submissions} | {student for student, _ in earlier}
         manual = exports.read_manual(args.merge_manual, table, students) if args.merge_manual else {}
     except (OSError, ValueError) as error:
         p.error(str(error))
@@ -506,18 +506,17 @@ def main(argv=None):
             print(f"  grader fault: {record['path']}: {record['fault']}")
         return 3 if faults else 0
     exports.save_records(out, records)
-    kept = exports.load_records(out)
-    for record in records:  # a fault stands in only where no earlier result of the submission is kept
-        kept.setdefault((record["student"], record["chapter"]), record)
+    latest = {(r["student"], r["chapter"]): r for r in records}
+    kept = {**latest, **{key: r for key, r in earlier.items() if key not in latest or latest[key].get("fault")}}
     problems = problems + [f"{r['path']}: not graded: the grader failed on it ({r['fault']}); the traceback is in "
                            f"{(out / 'grader-errors.log').resolve()}; grade it again once fixed"
-                           + (" (its earlier result is kept meanwhile)" if (r["student"], r["chapter"]) in
-                              exports.load_records(out) else "") for r in faults]
+                           + (" (its earlier result is kept meanwhile)" if key in earlier else "")
+                           for key, r in latest.items() if r.get("fault")]
     written = exports.write_all(list(kept.values()), table, roster, out, problems, state)
     cached = sum(r["cached"] for r in records)
-    earlier = len(kept) - len({(r["student"], r["chapter"]) for r in records})
+    others = sum(key not in latest for key in kept)
     print(f"graded {len(records)} submissions ({cached} from earlier results) in {seconds:.0f} s"
-          + (f"; {earlier} results of earlier runs kept" if earlier else ""))
+          + (f"; {others} results of earlier runs kept" if others else ""))
     for path in written:
         print(f"  {path.resolve()}")
     if problems:

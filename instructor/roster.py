@@ -166,65 +166,63 @@ def _aliases(roster):
     return {alias: ids.pop() for alias, ids in found.items() if len(ids) == 1}
 
 
-def _student(token, roster):
-    """The roster id ``token`` names (an id, canvas_id, login, email or name of exactly one student,
-    itself or as exactly one underscore-separated part of it)."""
-    if roster is None:
-        return token
-    if token in roster:
-        return token
-    aliases = _aliases(roster)
-    for form in (token, _plain(token)):
-        if form in aliases:
-            return aliases[form]
-    parts = {p for p in token.split("_") if p}
-    matches = {roster_id for p in parts for roster_id in (p if p in roster else aliases.get(p),) if roster_id}
-    return matches.pop() if len(matches) == 1 else None
+class Identities:
+    """Whom a folder or a file name means. With a roster: the student it names (see :func:`_aliases`),
+    itself or as exactly one of its parts between underscores, else ``None``; without one, the name itself."""
+
+    def __init__(self, roster):
+        self.roster = roster
+        self.aliases = _aliases(roster) if roster is not None else {}
+
+    def student(self, token):
+        if not token or self.roster is None or token in self.roster:
+            return token or None
+        for form in (token, _plain(token)):
+            if form in self.aliases:
+                return self.aliases[form]
+        parts = {p for p in token.split("_") if p}
+        matches = {p if p in self.roster else self.aliases.get(p) for p in parts} - {None}
+        return matches.pop() if len(matches) == 1 else None
+
+    def named(self, path, prefix):
+        """Whom the file's own name names: its Canvas name (by the Canvas user id, else by the name in it),
+        else the name in front of the chapter."""
+        match = CANVAS_NAME.match(path.name)
+        if match and self.roster is None:
+            return match.group("name")
+        if match:
+            return self.student(match.group("user")) or self.student(match.group("name"))
+        return self.student(prefix)
 
 
-def _canvas(name, roster):
-    """The student a Canvas download's file name names (``None`` if it is no such name or names no one)."""
-    match = CANVAS_NAME.match(name)
-    if not match:
-        return None
-    if roster is None:
-        return match.group("name")
-    by_canvas = {s.canvas_id: s.id for s in roster.values() if s.canvas_id}
-    return by_canvas.get(match.group("user")) or _student(match.group("name"), roster)
-
-
-def _whose(path, folder, given, prefix, roster):
-    """``(student, problem)``: whose notebook this is, or why that cannot be said."""
-    named = _canvas(path.name, roster)
-    if named is None and prefix:
-        named = _student(prefix, roster) if roster is not None else None
+def _whose(path, folder, given, prefix, who):
+    """``(student, problem)``: whose notebook this is, or why that cannot be said (``(None, None)``: no name
+    says whose)."""
+    named = who.named(path, prefix)
+    canvas = CANVAS_NAME.match(path.name)
     if given:  # a notebook given by itself: its name, else its folder
-        token = prefix or folder
-        student = (_canvas(path.name, roster) or (_student(prefix, roster) if prefix else None)
-                   or _student(folder, roster))
-        return (student, None) if student else (None, f"no student in the roster matches `{token}`")
+        student = named or who.student(folder)
+        return (student, None) if student else (None, f"no student in the roster matches `{prefix or folder}`")
     if folder is None:
-        if not prefix and not CANVAS_NAME.match(path.name):
-            return None, None
-        student = _canvas(path.name, roster) or _student(prefix, roster)
-        return (student, None) if student else (None, f"no student in the roster matches `{prefix}`")
-    owner = _student(folder, roster)
-    if roster is None and CANVAS_NAME.match(path.name):
-        owner = None  # a folder of Canvas's files (one assignment): the name says whose
-    if owner is not None:
-        if named is not None and named != owner:
-            return None, (f"the file names `{named}` but lies in the folder of `{owner}`; a file is credited only "
-                          f"to the student whose folder holds it")
-        return owner, None
-    if named is not None:
-        return named, None
-    return None, (f"no student in the roster matches the folder `{folder}`, nor the file's name" if roster is not None
-                  else f"whose is it? the folder `{folder}` holds Canvas's files, but this name is not Canvas's")
+        if named or not (prefix or canvas):
+            return named, None
+        return None, f"no student in the roster matches `{prefix or path.name}`"
+    owner = None if who.roster is None and canvas else who.student(folder)  # a folder of Canvas's files: no one's
+    if owner is None:
+        if named:
+            return named, None
+        return None, (f"no student in the roster matches the folder `{folder}`, nor the file's name"
+                      if who.roster is not None else
+                      f"whose is it? the folder `{folder}` holds Canvas's files, but this name is not Canvas's")
+    if who.roster is not None and named not in (None, owner):
+        return None, (f"the file names `{named}` but lies in the folder of `{owner}`; a file is credited only "
+                      f"to the student whose folder holds it")
+    return owner, None
 
 
 def collect(arguments, chapters, roster=None):
     """``(submissions, problems)``: each notebook mapped to a student and a chapter, and what could not be."""
-    problems, found = [], {}
+    problems, found, who = [], {}, Identities(roster)
     for argument in arguments:
         for path, folder, given in _notebooks(argument):
             chapter, at = _chapter(path.stem, chapters)
@@ -236,7 +234,7 @@ def collect(arguments, chapters, roster=None):
             match = CANVAS_NAME.match(path.name)
             if match and chapter in match.group("file"):
                 prefix = ""  # the Canvas name is the whole prefix
-            student, problem = _whose(path, folder, given, prefix, roster)
+            student, problem = _whose(path, folder, given, prefix, who)
             if problem:
                 problems.append(f"{path}: not graded: {problem}")
                 continue

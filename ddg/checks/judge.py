@@ -152,13 +152,10 @@ def judge(exercise, calls, raw, name=None):
             feedback.problem = printable(raw.get("error", "the answer's process sent back something that is not "
                                                           "its results"))[:400]
         return feedback
-    if not runner.well_formed(raw) or len(raw) > len(calls):  # results read back from elsewhere (the grader's sandbox)
-        feedback.problem = "the process the answer ran in sent back something that is not its results"
-        return feedback
-    if len(raw) < len(calls) and (not raw or "missing" in raw[-1]) or any("missing" in r for r in raw):
+    if runner.well_formed(raw) and len(raw) <= len(calls) and any("missing" in r for r in raw[-1:]):
         feedback.problem = "not written yet: replace `raise NotImplementedError` with your code"
         return feedback
-    if len(raw) < len(calls):
+    if not runner.well_formed(raw) or len(raw) != len(calls):  # read back from elsewhere (the grader's sandbox)
         feedback.problem = "the process the answer ran in sent back something that is not its results"
         return feedback
     try:
@@ -177,21 +174,15 @@ def judge(exercise, calls, raw, name=None):
 
 
 def result_array(entry):
-    """The one door every result passes through before it is compared: ``(array, problem)``.
-
-    ``array`` is the result as a float array (``None`` if it is none); ``problem`` says, in the
-    student's terms, what else it is. Whatever ``entry`` holds (forged on a pipe, nested, ragged,
-    text, objects, huge), this returns.
-    """
+    """The one door every result passes through before it is compared: a float array, or ``None``
+    where the result is none (nested lists of different lengths, text, objects: whatever the answer's
+    process sent). :func:`shape_problem` then says, in the student's terms, what is wrong with it."""
     value = entry.get("value") if isinstance(entry, dict) else None
     try:
         array = np.asarray(value)
-        if array.dtype.kind not in "biuf":
-            raise TypeError(array.dtype.kind)
-        array = array.astype(float)
+        return array.astype(float) if array.dtype.kind in "biuf" else None
     except (TypeError, ValueError, OverflowError, RecursionError, MemoryError):
-        return None, "it returned nested lists of different lengths or things that are not numbers, not an array"
-    return array, None
+        return None
 
 
 def _expected(exercise, call):
@@ -239,7 +230,7 @@ def _verdict(exercise, calls, raw):
         if r["kind"] == "type":
             return f"on {calls[i].what}: {printable(r['error'])}"
         return f"on {calls[i].what} it raised {printable(r['kind'])[:60]}: {printable(r['error'])}"
-    got = [result_array(r)[0] for r in raw]
+    got = [result_array(r) for r in raw]
     want = [_expected(exercise, call) for call in calls]
     right = [_right(exercise, g, w, c) for g, w, c in zip(got, want, calls, strict=True)]
     if all(right):
@@ -281,7 +272,7 @@ def right_inputs(exercise, calls, raw):
     try:
         with np.errstate(all="ignore"):
             return [i < len(raw) and "value" in raw[i]
-                    and _right(exercise, result_array(raw[i])[0], _expected(exercise, call), call)
+                    and _right(exercise, result_array(raw[i]), _expected(exercise, call), call)
                     for i, call in enumerate(calls)]
     except Exception as error:  # noqa: BLE001 - a bug of the check, said as such
         raise CheckError(f"the check of {exercise.name} failed on its own ({type(error).__name__}: {error})") from error
@@ -311,12 +302,11 @@ def _matches(mistake, got, want, call, exercise):
 
 
 def _shows(mistake, got, want, calls, exercise):
-    """Whether the answer shows ``mistake`` on every input (and is right where it cannot show)."""
+    """Whether the answer shows ``mistake`` on every input (and is right where it cannot show); asked only
+    of an answer that is wrong somewhere."""
     if mistake.across is not None:
         return all(g is not None for g in got) and mistake.across(got, want, calls)
-    if not all(_matches(mistake, g, w, call, exercise) for g, w, call in zip(got, want, calls, strict=True)):
-        return False
-    return any(not _right(exercise, g, w, c) for g, w, c in zip(got, want, calls, strict=True))
+    return all(_matches(mistake, g, w, call, exercise) for g, w, call in zip(got, want, calls, strict=True))
 
 
 def _pair(exercise, got, want, calls):

@@ -104,28 +104,25 @@ def plain(value):
     Real numbers only: text that looks like a number, complex numbers, ``None`` and other objects
     inside a list are described, never converted.
     """
+    if value is None:
+        return {"error": "it returned None, not real numbers (a missing `return`?)", "kind": "type"}
     kind = type(value).__name__
     try:
-        if isinstance(value, (str, bytes)):
-            raise TypeError
-        array = np.asarray(value)
-        if array.dtype.kind == "O" and all(isinstance(x, (int, float, np.integer, np.floating)) and not isinstance(x, bool)
-                                           for x in array.ravel()[:RESULT_LIMIT]):
-            array = array.astype(float)
-        if array.dtype.kind not in "biuf":
-            raise TypeError
-        if array.size > RESULT_LIMIT:
+        array = None if isinstance(value, (str, bytes)) else np.asarray(value)
+        if array is not None and array.size > RESULT_LIMIT:
             return {"error": f"it returned {array.size} numbers, far more than any exercise asks for", "kind": "type"}
-        array = array.astype(float)
+        if array is not None and array.dtype.kind == "O" and all(
+                isinstance(x, (int, float, np.integer, np.floating)) and not isinstance(x, bool) for x in array.flat):
+            array = array.astype(float)
+        if array is not None and array.dtype.kind in "biuf":
+            return {"value": array.astype(float).tolist(), "type": kind}
     except BaseException:  # noqa: BLE001 - an object's own __array__ or __float__ may raise anything
-        try:
-            shown = repr(str(value)[:40])
-        except BaseException:  # noqa: BLE001
-            shown = ""
-        if value is None:
-            return {"error": "it returned None, not real numbers (a missing `return`?)", "kind": "type"}
-        return {"error": f"it returned {kind} {shown}, not real numbers".replace("  ", " "), "kind": "type"}
-    return {"value": array.tolist(), "type": kind}
+        pass
+    try:
+        shown = f" {str(value)[:40]!r}"
+    except BaseException:  # noqa: BLE001 - its __str__ too
+        shown = ""
+    return {"error": f"it returned {kind}{shown}, not real numbers", "kind": "type"}
 
 
 def well_formed(results):

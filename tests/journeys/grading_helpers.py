@@ -82,6 +82,21 @@ def rows(path):
         return list(csv.reader(file))
 
 
+DIALECTS = {"comma": (",", "\n", ""), "excel-europe": (";", "\r\n", "\ufeff"), "crlf": (",", "\r\n", ""),
+            "tab": ("\t", "\n", "\ufeff")}
+"""How spreadsheets save CSV: delimiter, line end, byte order mark (Excel in much of Europe: the second)."""
+
+
+def spreadsheet(table, dialect="excel-europe"):
+    """The bytes of ``table`` (a list of rows) saved as CSV in ``dialect`` (a key of :data:`DIALECTS`)."""
+    import io
+
+    delimiter, end, bom = DIALECTS[dialect]
+    buffer = io.StringIO()
+    csv.writer(buffer, delimiter=delimiter, lineterminator=end).writerows(table)
+    return (bom + buffer.getvalue()).encode("utf-8")
+
+
 def by_student(path):
     with open(path, newline="") as file:
         return {row["student_id"]: row for row in csv.DictReader(file)}

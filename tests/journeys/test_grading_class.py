@@ -35,7 +35,7 @@ MANGLES = {
 RIGHT = {  # right answers in other forms than the reference's
     "reference": "r", "a list": "r.tolist()", "float32": "r.astype(np.float32)", "a copy": "np.array(r)",
     "long double": "r.astype(np.longdouble)", "a tuple of rows": "tuple(r.tolist()) if r.ndim else r",
-    "an integer-free float": "r + 0.0",
+    "a masked array": "np.ma.masked_array(r)",
 }
 VARIANTS = [*MANGLES.items(), *RIGHT.items()]
 STUDENTS = [f"s{k:03d}" for k in range(len(VARIANTS))]

@@ -8,20 +8,18 @@ chapter; a file put under another student's name; a sandbox that cannot start; a
 the harness.
 """
 
-import csv
-import io
 import os
 import random
 import stat
 
-from grading_helpers import CHAPTER, by_student, grade, needs_root, references, rows, submission
+from grading_helpers import CHAPTER, by_student, grade, needs_root, references, rows, spreadsheet, submission
 
 OTHER = "04_gradient_of_length"
 
 
 def european(text):
-    """``text`` (comma-separated) as Excel writes CSV in much of Europe: semicolons, a BOM, CRLF."""
-    return ("\ufeff" + text.replace(",", ";").replace("\n", "\r\n")).encode("utf-8")
+    """``text`` (a row a line, cells between commas) as Excel saves CSV in much of Europe."""
+    return spreadsheet([line.split(",") for line in text.splitlines()], "excel-europe")
 
 
 def test_written_scores_late_notebooks_and_other_chapters_never_drop_what_was_entered(tmp_path):
@@ -38,7 +36,8 @@ def test_written_scores_late_notebooks_and_other_chapters_never_drop_what_was_en
     assert grade(ch3, *common).returncode == 0
 
     scores = tmp_path / "scores.csv"  # a European spreadsheet: semicolons, BOM, CRLF, decimal commas, a comment
-    scores.write_bytes(european("student_id,ex-turning-three,Kommentar\nalice,1,good\nbob,0_5,partly\n").replace(b"0_5", b"0,5"))
+    scores.write_bytes(spreadsheet([["student_id", "ex-turning-three", "Kommentar"], ["alice", "1", "good; so far"],
+                                    ["bob", "0,5", "partly"]]))
     grade(ch3, *common, "--merge-manual", scores)
     grades = by_student(out / "grades.csv")
     assert [grades[s]["ex-turning-three"] for s in ("alice", "bob", "carol")] == ["1", "0.5", ""]
@@ -73,12 +72,7 @@ def canvas_export(students, dialect):
     table = [["Student", "ID", "SIS User ID", "SIS Login ID", "Section", "Homework 3 (123456)"],
              ["    Points Possible", "", "", "", "", "3"]]
     table += [[f"{last}, {first}", canvas, sis, login, "A", ""] for first, last, canvas, sis, login in students]
-    table.append(["Student, Test", "999", "", "", "A", ""])
-    delimiter, end, bom = {"comma": (",", "\n", ""), "excel-europe": (";", "\r\n", "\ufeff"),
-                           "crlf": (",", "\r\n", ""), "tab": ("\t", "\n", "\ufeff")}[dialect]
-    buffer = io.StringIO()
-    csv.writer(buffer, delimiter=delimiter, lineterminator=end).writerows(table)
-    return (bom + buffer.getvalue()).encode("utf-8")
+    return spreadsheet([*table, ["Student, Test", "999", "", "", "A", ""]], dialect)
 
 
 def test_canvas_folders_names_rosters_and_columns(tmp_path):
