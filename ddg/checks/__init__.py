@@ -2,67 +2,100 @@
 
 >>> from ddg.checks import check_turning_angles
 >>> check_turning_angles(turning_angles)          # doctest: +SKIP
-✓ turning_angles passed on 14 fresh random inputs
+✓ turning_angles passed on 14 public inputs
 
 or, for example, ``✗ turning_angles: your angles look like degrees: on a clockwise square, at
 vertex 0 you give 90 where 1.571 (radians) was expected``. ``bool(feedback)`` is ``True`` when the
-answer is right. Pass ``seed=`` to repeat the same input.
+answer is right. Pass ``seed=`` to pick one of the public sets of input (a random one otherwise).
 
 How a check works:
 
-1. It draws fresh random input (polygons, curves, parameters), all of it before your answer runs.
-2. It runs your answer on that input in a separate process, for at most :data:`TIME_LIMIT`
-   seconds, with the ``ddg`` quantity the exercise asks for switched off ("write this one
-   yourself"), without the checks' own code, and with everything it starts stopped afterwards
-   (``ddg/checks/runner.py`` says how).
-3. Back here it works out what a right answer returns and compares: if yours differs, it looks
-   for the cause among the mistakes students make (degrees for radians, the other sign convention,
-   the closed curve's wrap-around, an index shifted by one, a missing weight ...) and names it,
-   with the value expected next to yours; otherwise it says where the two differ.
+1. It takes a set of *public* input (polygons, curves, parameters) from ``public.json``, which
+   ships with ``ddg`` and holds what a right answer returns on each: the checks hold no code that
+   computes an answer (the instructor's answer key made that file).
+2. It runs your answer on that input in a separate process, one input at a time, for at most
+   :data:`TIME_LIMIT` seconds in all, with the ``ddg`` quantity the exercise asks for switched
+   off where it is implemented ("write this one yourself"), without the checks' own code, and with
+   everything it starts stopped afterwards (``ddg/checks/runner.py`` says how).
+3. Back here it compares with the expected values: if yours differ, it looks for the cause among
+   the mistakes students make (degrees for radians, the other sign convention, the closed curve's
+   wrap-around, an index shifted by one, a missing weight ...) and names it, with the value
+   expected next to yours; otherwise it says where the two differ.
 
-What a check is not: a sandbox against deliberate cheating. Switching a quantity off catches the
-one-line shortcut (``return DiscreteCurve(v).turning_angles``); an answer that copies ``ddg``'s
-public source can still pass. Where ``fork`` is missing (Windows) the answer runs in a thread of
-this process, and only the time limit applies.
-
-The same exercises are graded by ``python -m instructor.grade``: there the input is drawn by the
-grader from a secret seed, only the student's answer runs, in a sandbox, and the grader judges.
+The grader (``python -m instructor.grade``) judges the same way, with the same diagnosis, on
+*hidden* input: drawn for each student and each version of a notebook from the instructor's secret,
+with the answer key, in a sandbox. An answer that passes here by knowing the public input passes
+nothing there. What a check is not: a sandbox against deliberate cheating on your own machine; an
+answer that copies ``ddg``'s public source can still pass (that is the documented limit). Where
+``fork`` is missing (Windows) the answer runs in a thread of this process, and only the time limit
+applies.
 """
+
+import functools
+import json
+import pathlib
 
 import numpy as np
 
 from . import comparing, curvatures, curves, geometry  # noqa: F401 (importing them registers their exercises)
-from .judge import EXERCISES, CheckError, Feedback, judge
+from .judge import EXERCISES, Call, CheckError, Feedback, judge
 from .runner import TIME_LIMIT, WriteItYourself, evaluate
 
 CHECKS = {f"check_{name}": name for name in EXERCISES}
 """The check functions of the book, by name, with the exercise each one checks."""
 
 
+PUBLIC = pathlib.Path(__file__).with_name("public.json")
+"""The public input of every check, with what a right answer returns on it (written by
+``python -m instructor.references``, which ``make student`` runs)."""
+
+
 def draw(name, seed=None):
-    """The input of one check: a list of ``judge.Call``, from ``seed`` (random when ``None``)."""
+    """Fresh input of one check (a list of ``judge.Call``, without expected values), from ``seed``."""
     return EXERCISES[name].draw(np.random.default_rng(seed))
 
 
-def run(name, answer, seed=None, isolate=True):
+@functools.cache
+def _public():
+    try:
+        return json.loads(PUBLIC.read_text())
+    except (OSError, ValueError) as error:
+        raise CheckError(f"the public input of the checks cannot be read from {PUBLIC} ({error}); the course's "
+                         "ddg is incomplete: install it again") from error
+
+
+def public(name, seed=None):
+    """One set of the public input of the check of ``name``: ``judge.Call`` objects with their expected
+    values; ``seed`` picks the set (a random one when ``None``)."""
+    sets = _public()[name]
+    chosen = sets[int(np.random.default_rng(seed).integers(len(sets))) if seed is None else seed % len(sets)]
+    return [Call(tuple(c["args"]), c["what"], np.asarray(c["want"], dtype=float),
+                 {k: np.asarray(v, dtype=float) for k, v in c.get("given", {}).items()}) for c in chosen]
+
+
+def run(name, answer, seed=None, isolate=True, calls=None, kind="public"):
     """Check ``answer`` for the exercise ``name`` (a key of :data:`EXERCISES`): its :class:`Feedback`.
 
+    ``calls`` (with their expected values) replaces the public input: the grader's hidden input.
     ``isolate=False`` runs the answer in this process (no time limit, nothing switched off): for
     tests, where the answers are the test's own.
     """
     exercise = EXERCISES[name]
-    calls = draw(name, seed)
-    specs = [call.args for call in calls]
-    if isolate:
-        raw = evaluate(answer, specs, exercise.forbidden, exercise.measures, build=geometry.build)
-    else:
-        from .runner import answers
-        raw = answers(answer, specs, geometry.build)
     label = getattr(answer, "__name__", name) if callable(answer) else name
+    label = label if isinstance(label, str) else name
     try:
-        return judge(exercise, calls, raw, label if isinstance(label, str) else name)
+        calls = public(name, seed) if calls is None else calls
+        specs = [call.args for call in calls]
+        if isolate:
+            raw = evaluate(answer, specs, exercise.forbidden, exercise.measures, build=geometry.build)
+        else:
+            from .runner import answers
+            raw = answers(answer, specs, geometry.build)
+        feedback = judge(exercise, calls, raw, label)
     except CheckError as error:
-        return Feedback(name, problem=f"{error}: please tell your instructor", inputs=len(calls))
+        return Feedback(name, problem=f"{error}: please tell your instructor", inputs=len(calls or ()), kind=kind)
+    feedback.kind = kind
+    return feedback
 
 
 def answer_results(name, answer, specs, limit=TIME_LIMIT):
@@ -133,5 +166,5 @@ def check_zigzag_exponent(zigzag_exponent, seed=None):
     return run("zigzag_exponent", zigzag_exponent, seed)
 
 
-__all__ = ["Feedback", "WriteItYourself", "TIME_LIMIT", "EXERCISES", "CHECKS", "run", "draw", "answer_results",
+__all__ = ["Feedback", "WriteItYourself", "TIME_LIMIT", "EXERCISES", "CHECKS", "run", "draw", "public", "answer_results",
            *CHECKS]

@@ -1,15 +1,15 @@
 """The exercises of the chapters on smooth and discrete curves: the osculating circle, a staircase
 around an ellipse, and four vertex normals.
 
-Each reads: draw the input; say what a right answer returns; list the mistakes, most specific first.
+Each reads: draw the input; list the mistakes, most specific first (what a right answer returns comes
+with the input, from the answer key).
 """
 
 import numpy as np
 
-from ..curve import DiscreteCurve
 from . import geometry as g
 from .curvatures import READ_ONLY, shifted, wrap_around
-from .judge import Call, Exercise, Mistake
+from .judge import Call, Exercise, Mistake, given
 
 
 class OsculatingCenter(Exercise):
@@ -29,16 +29,6 @@ class OsculatingCenter(Exercise):
         bean, t = g.bean(rng)
         calls.append(Call((bean, g.array(t)), "a non-convex curve, which bends both ways"))
         return calls
-
-    def expected(self, call):
-        """The limit of the circle through three nearby points of the curve (measured, not by formula)."""
-        curve, t = (g.build(a) for a in call.args)
-        p, q, r = (curve.position(t + d) for d in (-2e-4, 0.0, 2e-4))
-        a, b = q - p, r - p
-        d = 2 * (a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0])
-        ux = (b[:, 1] * (a**2).sum(1) - a[:, 1] * (b**2).sum(1)) / d
-        uy = (a[:, 0] * (b**2).sum(1) - b[:, 0] * (a**2).sum(1)) / d
-        return p + np.stack([ux, uy], axis=1)
 
     @staticmethod
     def _centre(side, radius, direction="normal"):
@@ -85,79 +75,28 @@ class Staircase(Exercise):
             calls += [Call((spec, m), f"staircase(curve, {m}) around {where}") for m in ms]
         return calls
 
-    @staticmethod
-    def _stairs(m, corner, call):
-        """The points at 2 pi k / (4m), each followed by the corner ``corner(p, q, centre)`` chooses."""
-        curve = g.build(call.args[0])
-        p = curve.position(np.arange(4 * m) * (np.pi / (2 * m)))
-        q = np.concatenate([p[1:], p[:1]])  # the next point
-        centre = np.array(call.args[0]["ellipse"][2:4])
-        return np.stack([p, corner(p, q, centre)], axis=1).reshape(-1, 2)
-
-    def expected(self, call):
-        def outer(p, q, centre):  # x and y each from the point farther from the centre in that direction
-            x = np.where(np.abs(p[:, 0] - centre[0]) >= np.abs(q[:, 0] - centre[0]), p[:, 0], q[:, 0])
-            y = np.where(np.abs(p[:, 1] - centre[1]) >= np.abs(q[:, 1] - centre[1]), p[:, 1], q[:, 1])
-            return np.stack([x, y], axis=1)
-        return self._stairs(call.args[1], outer, call)
-
-    def _rule(self, corner, m=lambda call: call.args[1]):
-        return lambda want, call: self._stairs(m(call), corner, call)
-
-    @staticmethod
-    def _inner(p, q, centre):
-        x = np.where(np.abs(p[:, 0] - centre[0]) < np.abs(q[:, 0] - centre[0]), p[:, 0], q[:, 0])
-        y = np.where(np.abs(p[:, 1] - centre[1]) < np.abs(q[:, 1] - centre[1]), p[:, 1], q[:, 1])
-        return np.stack([x, y], axis=1)
-
-    @staticmethod
-    def _from_origin(p, q, centre):
-        return Staircase._outer_about(p, q, np.zeros(2))
-
-    @staticmethod
-    def _outer_about(p, q, centre):
-        x = np.where(np.abs(p[:, 0] - centre[0]) >= np.abs(q[:, 0] - centre[0]), p[:, 0], q[:, 0])
-        y = np.where(np.abs(p[:, 1] - centre[1]) >= np.abs(q[:, 1] - centre[1]), p[:, 1], q[:, 1])
-        return np.stack([x, y], axis=1)
-
-    @staticmethod
-    def _by_quadrant(p, q, centre):  # a rule worked out on a clockwise ellipse, used on every one
-        mid = (p + q) / 2 - centre
-        odd = mid[:, 0] * mid[:, 1] > 0
-        return np.where(odd[:, None], np.stack([q[:, 0], p[:, 1]], 1), np.stack([p[:, 0], q[:, 1]], 1))
-
-    @property
-    def mistakes(self):
-        return (
-            Mistake("no corners", "only the 4m points on the ellipse: a staircase has a corner between each two, "
-                    "8m vertices in all", predict=lambda want, call: want[::2]),
-            Mistake("closing corner", "the corner after the last point, before the step back to v_0, is missing",
-                    predict=lambda want, call: want[:-1]),
-            Mistake("inner corners", "a corner lies inside the ellipse: of the two corners between consecutive "
-                    "points take the one farther from the centre (on {what}{at} expected {want}, got {got})",
-                    predict=self._rule(self._inner)),
-            Mistake("about the origin", "'farther out' is measured from the ellipse's centre, not from the origin "
-                    "(on {what}{at} expected {want}, got {got})", predict=self._rule(self._from_origin)),
-            Mistake("one orientation", "the corner rule works on a clockwise ellipse only: on {what} a corner lies "
-                    "inside{at} (expected {want}, got {got}); choose the corner farther from the centre",
-                    predict=self._rule(self._by_quadrant)),
-            Mistake("8m points", "v[2k] should be the k-th of 4m points, curve.position(2 pi k / (4m)): yours runs "
-                    "through 8m points", predict=self._rule(self._outer_about, lambda call: 2 * call.args[1])),
-            Mistake("starts at a corner", "v[0] should be the first point, curve.position(0), and v[1] the corner "
-                    "after it (on {what}{at} expected {want}, got {got})", predict=shifted(1)),
-            READ_ONLY,
-        )
+    mistakes = (
+        Mistake("no corners", "only the 4m points on the ellipse: a staircase has a corner between each two, "
+            "8m vertices in all", predict=lambda want, call: want[::2]),
+        Mistake("closing corner", "the corner after the last point, before the step back to v_0, is missing",
+            predict=lambda want, call: want[:-1]),
+        Mistake("inner corners", "a corner lies inside the ellipse: of the two corners between consecutive "
+            "points take the one farther from the centre (on {what}{at} expected {want}, got {got})",
+            predict=given("inner corners")),
+        Mistake("about the origin", "'farther out' is measured from the ellipse's centre, not from the origin "
+            "(on {what}{at} expected {want}, got {got})", predict=given("about the origin")),
+        Mistake("one orientation", "the corner rule works on a clockwise ellipse only: on {what} a corner lies "
+            "inside{at} (expected {want}, got {got}); choose the corner farther from the centre",
+            predict=given("one orientation")),
+        Mistake("8m points", "v[2k] should be the k-th of 4m points, curve.position(2 pi k / (4m)): yours runs "
+            "through 8m points", predict=given("8m points")),
+        Mistake("starts at a corner", "v[0] should be the first point, curve.position(0), and v[1] the corner "
+            "after it (on {what}{at} expected {want}, got {got})", predict=shifted(1)),
+        READ_ONLY,
+    )
 
 
 METHODS = ("bisector", "length-weighted", "length-gradient", "area-gradient")
-
-
-def normals(curve, method):
-    """The unit vertex normal of each method, from ddg's quantities."""
-    weighted = np.roll(curve.edge_lengths, 1)[:, None] * np.roll(curve.normals, 1, axis=0)
-    weighted += curve.edge_lengths[:, None] * curve.normals  # the direction of the gradient of the area too
-    n = {"bisector": curve.bisector_normals, "length-gradient": curve.length_gradient()}.get(method, weighted)
-    return n / np.linalg.norm(n, axis=1, keepdims=True)
 
 
 class VertexNormals(Exercise):
@@ -171,33 +110,21 @@ class VertexNormals(Exercise):
             (convex, "a clockwise convex polygon"), (other, "a polygon with unequal edges that turns both ways"))
             for method in METHODS]
 
-    def expected(self, call):
-        return normals(DiscreteCurve(call.args[0]["polygon"]), call.args[1])
-
-    @staticmethod
-    def _instead(other):
-        return lambda want, call: normals(DiscreteCurve(call.args[0]["polygon"]), other.get(call.args[1],
-                                                                                              call.args[1]))
-
     mistakes = (
         READ_ONLY,
         Mistake("inward", "the normals point inward: with N = J T they point outward on a clockwise polygon, mind "
                 "the sign convention (on {what}{at} expected {want}, got {got})", predict=lambda want, call: -want),
         Mistake("swapped", "the gradients of length and of area are swapped (on {what}{at} expected {want}, got "
-                "{got})", predict=_instead.__func__({"length-gradient": "area-gradient",
-                                                     "area-gradient": "length-gradient"})),
+                "{got})", predict=given("swapped")),
         Mistake("weights", "'length-weighted' weighs each edge normal by its edge's length; yours is the plain "
                 "bisector (on {what}{at} expected {want}, got {got})",
-                predict=_instead.__func__({"length-weighted": "bisector", "area-gradient": "bisector"})),
+                predict=given("weights")),
         Mistake("signed bisector", "the bisector of the two edge normals points to their side at every vertex; "
                 "yours turns round where the polygon turns counter-clockwise, as the gradient of length does (on "
-                "{what}{at} expected {want}, got {got})", predict=_instead.__func__({"bisector": "length-gradient"})),
+                "{what}{at} expected {want}, got {got})", predict=given("signed bisector")),
         Mistake("orientation", "the gradient of length points along the bisector where the polygon turns "
                 "clockwise and against it where it turns counter-clockwise, vertex by vertex, not by the turn of the "
-                "whole polygon (on {what}{at} expected {want}, got {got})", predict=lambda want, call: (
-                    normals(DiscreteCurve(call.args[0]["polygon"]), "bisector") * np.sign(
-                        DiscreteCurve(call.args[0]["polygon"]).signed_area)
-                    if call.args[1] == "length-gradient" else want)),
+                "whole polygon (on {what}{at} expected {want}, got {got})", predict=given("orientation")),
         Mistake("tangent", "turned a quarter: that is a tangent direction; the normal is N = J T (on {what}{at} "
                 "expected {want}, got {got})", predict=lambda want, call: np.stack([want[:, 1], -want[:, 0]], 1)),
         Mistake("unnormalized", "not unit vectors: divide each by its length (on {what}{at} expected {want}, got "

@@ -1,8 +1,9 @@
 """What a check reports, and how it finds the cause of a mistake.
 
-An :class:`Exercise` draws its input (:meth:`Exercise.draw`, a list of :class:`Call`), says what a
-right answer returns (:meth:`Exercise.expected`, computed only after the answer has run, in the
-checking process) and lists the :class:`Mistake`\\ s students make, most specific first. The
+An :class:`Exercise` draws its input (:meth:`Exercise.draw`, a list of :class:`Call`) and lists the
+:class:`Mistake`\\ s students make, most specific first. What a right answer returns is not here: each
+input carries it as data (``Call.want``: shipped with the public inputs of the students' checks, or
+filled in by the grader from the instructor's answer key, which never leaves the instructor). The
 verdict (:func:`judge`) first establishes what is wrong: the first mistake whose prediction the
 answer matches on *every* input explains it, in the student's terms, with the value expected next
 to the value that came back, at the first vertex where they differ. An answer that matches no
@@ -24,6 +25,14 @@ class Call:
 
     args: tuple
     what: str
+    want: object = None  # what a right answer returns (from the answer key, never computed here)
+    given: dict = field(default_factory=dict)  # what the mistakes that need the key predict, by key
+
+
+def given(key):
+    """A prediction the answer key supplies (``Call.given[key]``): for a mistake that is a slip in the
+    answer's own construction, where computing it would take the answer's code."""
+    return lambda want, call: call.given.get(key)
 
 
 @dataclass
@@ -54,6 +63,7 @@ class Feedback:
     problem: str | None = None
     inputs: int = 0
     notes: list = field(default_factory=list)
+    kind: str = "public"  # the inputs: "public" (shipped with the checks) or "hidden" (drawn by the grader)
 
     @property
     def passed(self):
@@ -64,7 +74,7 @@ class Feedback:
 
     def __repr__(self):
         name = printable(self.name)[:60]
-        lines = [f"✓ {name} passed on {self.inputs} fresh random inputs" if self.passed else
+        lines = [f"✓ {name} passed on {self.inputs} {self.kind} inputs" if self.passed else
                  f"✗ {name}: {printable(self.problem)}"]
         return "\n".join(lines + [f"  note: {printable(note)}" for note in self.notes])
 
@@ -114,8 +124,10 @@ class Exercise:
         raise NotImplementedError
 
     def expected(self, call):
-        """What a right answer returns for ``call`` (only ever computed after the answer ran)."""
-        raise NotImplementedError
+        """What a right answer returns for ``call``: the value it carries from the answer key."""
+        if call.want is None:
+            raise CheckError(f"the input {call.what!r} of {self.name} has no expected value")
+        return call.want
 
     def close(self, got, want, call):
         """Whether ``got`` is right (arrays of the same shape)."""
@@ -227,7 +239,7 @@ def _verdict(exercise, calls, raw):
         for mistake in exercise.mistakes:
             if mistake.error and _safe(lambda m=mistake: re.search(m.error, r["error"])):
                 return _say(mistake, calls[i], None, None, None, exercise)
-        if r["kind"] == "type":
+        if r["kind"] in ("type", "exited"):
             return f"on {calls[i].what}: {printable(r['error'])}"
         return f"on {calls[i].what} it raised {printable(r['kind'])[:60]}: {printable(r['error'])}"
     got = [result_array(r) for r in raw]

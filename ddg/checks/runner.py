@@ -1,8 +1,10 @@
 """Running an answer apart from the check: a child process, a time limit, and what crosses back.
 
-:func:`evaluate` calls ``answer(*args)`` for every argument tuple, in a process of its own (a copy
-of the caller's, made with ``fork``), and returns what came back as plain data: the values as
-nested lists of numbers, or what went wrong. Inside that process:
+:func:`evaluate` calls ``answer(*args)`` for every argument tuple, each in a process of its own (a
+copy of the caller's, made with ``fork``), and returns what came back as plain data: the values as
+nested lists of numbers, or what went wrong. Each input's process receives its own input and no
+other (the grader serves them one at a time, :class:`Feed`), builds it, and only then loses the
+checks' code and calls the answer. Inside it:
 
 * the ``ddg`` quantities the exercise asks for are switched off (they raise ``WriteItYourself``),
   as is anything the check uses to measure (``measures``: shapely's ``buffer``, say);
@@ -22,6 +24,7 @@ still gives a verdict, but nothing above is in place. None of this stops an answ
 
 import contextlib
 import ctypes
+import importlib
 import io
 import json
 import os
@@ -51,8 +54,19 @@ class WriteItYourself(Exception):
     """Raised when an answer uses the quantity its exercise asks for."""
 
 
+class Feed:
+    """Input served one at a time: ``count`` inputs, ``fetch(i)`` the argument specs of the ``i``-th, called
+    in the process that answers it (the grader's harness serves each from outside, once)."""
+
+    def __init__(self, count, fetch):
+        self.count, self.fetch = count, fetch
+
+    def __len__(self):
+        return self.count
+
+
 def evaluate(answer, calls, forbidden=(), measures=(), limit=TIME_LIMIT, build=lambda spec: spec):
-    """``answer(*build(args))`` for each ``args`` in ``calls``, apart from the caller.
+    """``answer(*build(args))`` for each ``args`` in ``calls`` (a list, or a :class:`Feed`), apart from the caller.
 
     Returns a list with one entry per call (``{"value": ..., "type": ..., "mutated": bool}``,
     ``{"error": ..., "kind": ...}`` or ``{"missing": True}``), or a dict if the whole run failed
@@ -63,8 +77,8 @@ def evaluate(answer, calls, forbidden=(), measures=(), limit=TIME_LIMIT, build=l
         return {"error": f"the answer should be a function, got {type(answer).__name__} {answer!r:.40}"}
     if hasattr(os, "fork") and sys.platform.startswith(("linux", "darwin")):
         return _in_child(answer, calls, forbidden, measures, limit, build)
-    box = {}
-    thread = threading.Thread(target=lambda: box.update(results=answers(answer, calls, build)), daemon=True)
+    box, specs = {}, calls if isinstance(calls, list) else [calls.fetch(i) for i in range(len(calls))]
+    thread = threading.Thread(target=lambda: box.update(results=answers(answer, specs, build)), daemon=True)
     thread.start()
     thread.join(limit)
     return box.get("results", {"timeout": limit})
@@ -79,19 +93,27 @@ def answer_all(answer, inputs):
     """Call the answer on every list of arguments in ``inputs``; each result or failure as plain data."""
     results = []
     for args in inputs:
-        before = [np.array(a) if isinstance(a, np.ndarray) else None for a in args]
-        try:
-            value = answer(*args)
-        except NotImplementedError:
-            results.append({"missing": True})
+        results.append(answer_one(answer, args))
+        if "missing" in results[-1]:
             break
-        except BaseException as error:  # noqa: BLE001 - an answer may raise anything, SystemExit too
-            results.append({"error": str(error)[:300], "kind": type(error).__name__})
-            continue
-        mutated = any(b is not None and (b.shape != a.shape or not np.array_equal(a, b, equal_nan=True))
-                      for a, b in zip(args, before, strict=True))
-        results.append({**plain(value), "mutated": mutated})
     return results
+
+
+def answer_one(answer, args):
+    """Call the answer on one list of arguments: its result or failure as plain data."""
+    before = [np.array(a) if isinstance(a, np.ndarray) else None for a in args]
+    try:
+        value = answer(*args)
+    except NotImplementedError:
+        return {"missing": True}
+    except BaseException as error:  # noqa: BLE001 - an answer may raise anything, SystemExit too
+        try:
+            return {"error": str(error)[:300], "kind": type(error).__name__}
+        except BaseException:  # noqa: BLE001 - its __str__ too
+            return {"error": "(an error that cannot be shown)", "kind": type(error).__name__}
+    mutated = any(b is not None and (b.shape != a.shape or not np.array_equal(a, b, equal_nan=True))
+                  for a, b in zip(args, before, strict=True))
+    return {**plain(value), "mutated": mutated}
 
 
 RESULT_LIMIT = 1_000_000
@@ -146,7 +168,14 @@ def _seal(forbidden, measures):
 
 def switch_off(forbidden, measures):
     """Make the ``DiscreteCurve`` quantities ``forbidden`` and the callables ``measures`` raise
-    :class:`WriteItYourself` in this process (the grader does this before a submission's cells run)."""
+    :class:`WriteItYourself` in this process (the grader does this before a submission's cells run).
+
+    ``measures`` names callables by ``"module.attribute"``: where a quantity is implemented (``ddg``'s
+    own helpers, so that a copy of ``DiscreteCurve`` made by running its source again is switched off
+    too) and what measures it (shapely's buffer, down to its compiled ``shapely.lib.buffer``, which
+    every other entry point calls). Their modules are imported first where they are not yet, and
+    cannot be loaded again afterwards (``ddg``'s modules by the checks' seal, compiled extensions here).
+    """
     from ..curve import DiscreteCurve
 
     private = {"turning_angles": ("_tan_half_psi",), "curvature": ("_curvatures",)}
@@ -155,16 +184,35 @@ def switch_off(forbidden, measures):
             raise WriteItYourself(f"it uses ddg's `{_name}`, which this exercise asks you to write yourself")
         for attribute in (name, *private.get(name, ())):
             setattr(DiscreteCurve, attribute, property(refuse))
+    roots = set()  # the packages of what is switched off
     for dotted in measures:
         module_name, _, attribute = dotted.rpartition(".")
-        module = sys.modules.get(module_name)
-        if module is not None:
-            def refuse(*args, _name=dotted, **kwargs):
-                raise WriteItYourself(f"it uses `{_name}`, which measures what this exercise asks you to compute")
-            setattr(module, attribute, refuse)
-            for cls in vars(module).values():  # shapely.Polygon.buffer and the like
-                if isinstance(cls, type) and attribute in vars(cls):
-                    setattr(cls, attribute, refuse)
+        try:
+            module = importlib.import_module(module_name)
+        except ImportError:  # nothing to switch off: the answer cannot use it either
+            continue
+        roots.add(module_name.split(".")[0])
+        if module_name.startswith("ddg."):
+            why = f"it uses `{dotted}`, ddg's own computation of what this exercise asks you to write yourself"
+        else:
+            why = f"it uses `{dotted}`, which measures what this exercise asks you to compute"
+
+        def refuse(*args, _why=why, **kwargs):
+            raise WriteItYourself(_why)
+        setattr(module, attribute, refuse)
+        for cls in vars(module).values():  # shapely.Polygon.buffer and the like
+            if isinstance(cls, type) and attribute in vars(cls):
+                setattr(cls, attribute, refuse)
+    if roots - {"ddg"}:
+        _imp = importlib.import_module("_imp")
+        create = _imp.create_dynamic
+
+        def no_second_copy(spec, *args):  # a compiled module loaded again would bring its functions back
+            loaded = {getattr(m, "__file__", None) for m in list(sys.modules.values())}
+            if spec.name in sys.modules or getattr(spec, "origin", None) in loaded:
+                raise ImportError(f"{spec.name} cannot be loaded again while a check runs")
+            return create(spec, *args)
+        _imp.create_dynamic = no_second_copy
 
 
 def _drop_checks():
@@ -182,19 +230,21 @@ def _drop_checks():
     for name in ("checks", "explore"):
         with contextlib.suppress(AttributeError):
             delattr(package, name)
-    sys.meta_path.insert(0, _NoNewDdg())
-    import importlib
+    sys.meta_path.insert(0, _NoNew(("ddg",)))
 
     def no_reload(module):
         raise ImportError("reloading a module is switched off while a check runs")
     importlib.reload = no_reload
 
 
-class _NoNewDdg:
-    """An import hook that refuses to load any part of ``ddg`` anew (what is loaded stays)."""
+class _NoNew:
+    """An import hook that refuses to load any part of the packages ``roots`` anew (what is loaded stays)."""
+
+    def __init__(self, roots):
+        self.roots = roots
 
     def find_spec(self, name, path=None, target=None):
-        if name == "ddg" or name.startswith("ddg."):
+        if name.split(".")[0] in self.roots:
             raise ImportError(f"{name} cannot be imported afresh while a check runs")
         return None
 
@@ -264,14 +314,12 @@ def _warden(answer, calls, forbidden, measures, build, results_fd, control_fd):
     if not contained:
         _libc() and _libc().prctl(36, 1, 0, 0, 0)  # PR_SET_CHILD_SUBREAPER: orphans come to us
     pid = os.fork()
-    if pid == 0:  # the answer's process
+    if pid == 0:  # the answer's process: one process per input below it
         try:
             os.close(control_fd)
             sys.stdout = sys.stderr = io.StringIO()  # the kernel's streams belong to the caller
-            inputs = [[build(a) for a in spec] for spec in calls]  # before the builders are sealed away
             _limits()
-            _seal(forbidden, measures)
-            data = json.dumps(answer_all(answer, inputs)).encode()
+            data = json.dumps(_each_apart(answer, calls, forbidden, measures, build)).encode()
             view = memoryview(data)
             while view:
                 view = view[os.write(results_fd, view):]
@@ -291,6 +339,68 @@ def _warden(answer, calls, forbidden, measures, build, results_fd, control_fd):
     with contextlib.suppress(ChildProcessError):
         os.waitpid(pid, 0)
     stop()
+
+
+def _each_apart(answer, calls, forbidden, measures, build):
+    """Each input in a process of its own, which fetches that input (and no other), builds it, seals
+    the checks away and calls the answer; its result comes back through a pipe."""
+    results = []
+    for i in range(len(calls)):
+        read, write = os.pipe()
+        pid = os.fork()
+        if pid == 0:
+            try:
+                os.close(read)
+                spec = calls[i] if isinstance(calls, list) else calls.fetch(i)
+                args = [build(a) for a in spec]  # before the builders are sealed away
+                del calls, spec
+                _seal(forbidden, measures)
+                data = json.dumps(answer_one(answer, args)).encode()
+                view = memoryview(data)
+                while view:
+                    view = view[os.write(write, view):]
+            finally:
+                os._exit(0)
+        os.close(write)
+        chunks = _read_until_ended(read, pid)
+        if os.getpid() == 1:  # process 1 of a PID namespace of its own: what that input's process left behind
+            with contextlib.suppress(OSError):
+                os.kill(-1, signal.SIGKILL)
+            with contextlib.suppress(ChildProcessError):
+                while os.waitpid(-1, 0):
+                    pass
+        try:
+            result = json.loads(b"".join(chunks))
+        except ValueError:
+            result = {"error": "it ended the process it ran in (os._exit, or a crash)", "kind": "exited"}
+        results.append(result)
+        if "missing" in result:
+            break
+    return results
+
+
+def _read_until_ended(fd, pid):
+    """What ``pid`` wrote to ``fd`` until it ended (a process it started may hold the pipe open longer)."""
+    chunks, ended = [], False
+    os.set_blocking(fd, False)
+    while True:
+        if select.select([fd], [], [], 0.02)[0]:
+            with contextlib.suppress(BlockingIOError):
+                chunk = os.read(fd, 1 << 16)
+                if not chunk:
+                    break
+                chunks.append(chunk)
+                continue
+        if ended:
+            break
+        try:
+            ended = os.waitpid(pid, os.WNOHANG)[0] != 0
+        except ChildProcessError:
+            ended = True
+    os.close(fd)
+    with contextlib.suppress(ChildProcessError):
+        os.waitpid(pid, 0)
+    return chunks
 
 
 def _in_child(answer, calls, forbidden, measures, limit, build):

@@ -17,7 +17,7 @@ import pytest
 from browser_helpers import EVERY_SECTION, SITES, Visit
 
 import ddg
-from ddg.checks.comparing import CircleCurvature
+from instructor import references
 from ddg.checks.judge import Call
 from ddg.explore import FLOW_COLORS, POLYGONS, SHAPES, measured_region
 from ddg.flow import flow
@@ -142,7 +142,7 @@ def arrows_are_ddgs(state):
 
 def circle_curvature(vertices):
     """Chapter 6's circle curvature as its grader computes it, from the circle's centre."""
-    return CircleCurvature().expected(Call(({"polygon": np.asarray(vertices).tolist()},), "the lab's polygon"))
+    return references.circle_curvature(Call(({"polygon": np.asarray(vertices).tolist()},), "the lab's polygon"))
 
 
 def detail_is_ddgs(state):

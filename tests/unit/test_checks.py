@@ -3,8 +3,10 @@
 For every coding exercise the catalogue lists right answers written in different ways (the book's
 reference solution from its notebook, the same returning float32 or a list, with a loop, another
 algorithm) and the mistakes students make, each written as a student would write it, with the
-words the check's message must contain. On each of 100 seeds every right answer passes and every
-wrong one fails with a message naming its mistake.
+words the check's message must contain. On each of 100 seeds of hidden input (the grader's, judged
+with the answer key) and on every public set (the students' own checks, judged with the data that
+ships with ``ddg``) every right answer passes and every wrong one fails with a message naming its
+mistake.
 """
 
 import json
@@ -16,10 +18,18 @@ import shapely
 from catalogue import CATALOGUE, PAIRS, REFERENCE, SCALAR, as_float32, as_list, named, ref, solution_cells, starter_of, times
 
 from ddg import checks
+from instructor import references
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 NOTEBOOKS = sorted((ROOT / "book").glob("*.ipynb"))
 SEEDS = range(100)
+
+
+def verdicts(name, answer):
+    """``{where: feedback}`` on 100 seeds of hidden input and on every public set."""
+    found = {f"seed {seed}": references.run(name, answer, seed, isolate=False) for seed in SEEDS}
+    found.update({f"public set {k}": checks.run(name, answer, k, isolate=False) for k in range(references.PUBLIC_SETS)})
+    return found
 
 
 def right_answers(name):
@@ -56,7 +66,7 @@ def test_every_coding_exercise_has_a_check_and_six_catalogued_mistakes():
 @pytest.mark.parametrize("name", sorted(CATALOGUE))
 def test_every_right_answer_passes_on_100_seeds(name):
     for answer in right_answers(name):
-        failed = {seed: repr(f) for seed in SEEDS if not (f := checks.run(name, answer, seed, isolate=False))}
+        failed = {where: repr(f) for where, f in verdicts(name, answer).items() if not f}
         assert not failed, f"{name}: a right answer failed on {len(failed)} seeds, e.g. {next(iter(failed.items()))}"
 
 
@@ -68,10 +78,9 @@ def assert_named_on_100_seeds(name, label, answer, words, start=""):
     """On every seed the check fails ``answer`` with a message that starts with ``start`` and has ``words``."""
     answer = named(label, answer)
     wrong = {}
-    for seed in SEEDS:
-        feedback = checks.run(name, answer, seed, isolate=False)
+    for where, feedback in verdicts(name, answer).items():
         if feedback or not feedback.problem.startswith(start) or not all(w in feedback.problem for w in words):
-            wrong[seed] = repr(feedback)
+            wrong[where] = repr(feedback)
     assert not wrong, f"{name}, {label}: not named on {len(wrong)} seeds, e.g. {next(iter(wrong.items()))}"
 
 

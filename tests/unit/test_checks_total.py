@@ -17,10 +17,11 @@ from hypothesis import strategies as st
 
 from ddg import checks
 from ddg.checks import runner
+from instructor import references
 judging = importlib.import_module("ddg.checks.judge")  # the module (ddg.checks.judge is also a function)
 
 NAMES = sorted(checks.EXERCISES)
-CALLS = {name: checks.draw(name, 7) for name in NAMES}
+CALLS = {name: references.hidden(name, 7) for name in NAMES}
 RIGHT = {name: runner.answers(REFERENCE[name], [c.args for c in CALLS[name]], checks.geometry.build) for name in NAMES}
 RAW_WORDS = ("Traceback", "broadcast", "operands could not", "inhomogeneous", "object of type", "NoneType' object",
              "index out of bounds", "numpy.")
@@ -122,7 +123,7 @@ def same(mangle, right):
 def test_the_books_solutions_mangled_get_a_verdict_never_a_crash(name):
     """The issue's 20 ways (and one more), through every check: each gets a clear verdict, none passes."""
     for seed in range(3):
-        calls = checks.draw(name, seed)
+        calls = references.hidden(name, seed)
         for mangle_name, mangle in mangles().items():
             def answer(*args, mangle=mangle):
                 return mangle(np.asarray(REFERENCE[name](*args), dtype=float))
