@@ -7,11 +7,15 @@ submission the grader
 1. takes the chapter's coding exercises, their points and their checks from the *instructor's*
    notebooks (``--book``, metadata ``ddg.exercises``), and its written exercises from the
    ``{exercise}`` blocks there: never from the submission;
-2. draws each exercise's input here, once for the class, from the secret (``seed_for``);
-3. runs the cells each answer needs, then the answer on that input, in the sandbox of
-   ``instructor/sandbox.py`` (which never receives the secret), through ``instructor/harness.py``;
-4. judges the raw results here, with the students' own checks (``ddg.checks``), and writes
-   feedback that says what happened, with the executed notebook beside it.
+2. draws each exercise's hidden input here, from the secret, the student and the notebook's code
+   (``seed_for``): an input that leaks is worth nothing to another student or to the next version
+   of the notebook, and the same notebook always gets the same input and grade;
+3. runs the cells each answer needs, then the answer on that input, one input per process, in the
+   sandbox of ``instructor/sandbox.py`` (which never receives the secret or the answer key),
+   through ``instructor/harness.py``;
+4. judges the raw results here, with the students' own checks (``ddg.checks``) and the answer key
+   (``instructor/references.py``), and writes feedback that says what happened (on the first
+   input that went wrong only), with the executed notebook beside it.
 
 Results are cached per notebook content (``DIR/cache``): a second run grades only what changed,
 ``--only`` and ``--student`` grade again what they name, and ``--shard K/N`` with ``--merge`` splits
@@ -27,7 +31,6 @@ instructor (not graded, listed in ``problems.txt``, or failed by the grader), 2 
 """
 
 import argparse
-import collections
 import concurrent.futures
 import functools
 import hashlib
@@ -43,16 +46,23 @@ import ddg
 from ddg import checks
 from ddg.checks.judge import Call, judge, printable, right_inputs
 
-from . import exports, roster as rosters, sandbox
+from . import exports, references, roster as rosters, sandbox
 
 LIMITS = {"timeout": 180, "cell_timeout": 30, "answer_timeout": checks.TIME_LIMIT, "memory": 4096}
 EXERCISE_BLOCK = re.compile(r"(?:`{3,}|:{3,})\{exercise\}[^\n]*\n((?:[ \t]*:[\w-]+:[^\n]*\n)*)")
 MAX_NOTEBOOK = 32 << 20
 
 
-def seed_for(secret, label):
-    """The seed of one exercise: derived from the secret, the same for every submission."""
-    return int.from_bytes(hashlib.sha256(f"{secret}/{label}".encode()).digest()[:8], "big")
+def seed_for(secret, label, student="", code=""):
+    """The seed of one exercise for one submission: from the secret, the student and the notebook's code
+    (``code_key``), so that no two students and no two versions of a notebook share an input."""
+    text = json.dumps([secret, label, student, code])
+    return int.from_bytes(hashlib.sha256(text.encode()).digest()[:8], "big")
+
+
+def code_key(cells):
+    """What the input depends on in a notebook: its code cells (outputs and markdown may change)."""
+    return hashlib.sha256(json.dumps([c for c in cells or () if c is not None]).encode()).hexdigest()
 
 
 def exercises(book):
@@ -79,14 +89,19 @@ def exercises(book):
     return table
 
 
-def draw_inputs(table, secret):
-    """``{label: [{"args": specs, "what": description}]}``: every coding exercise's input, drawn once."""
+def draw_inputs(coding, secret, student="", code=""):
+    """``{label: [{"args": specs, "what": description}]}``: the hidden input of each coding exercise of
+    one submission (``coding``: a chapter's exercises)."""
     inputs = {}
-    for chapter in table.values():
-        for label, e in chapter["coding"].items():
-            calls = checks.draw(checks.CHECKS[e["check"]], seed_for(secret, label))
-            inputs[label] = json.loads(json.dumps([{"args": list(c.args), "what": c.what} for c in calls]))
+    for label, e in coding.items():
+        calls = checks.draw(checks.CHECKS[e["check"]], seed_for(secret, label, student, code))
+        inputs[label] = json.loads(json.dumps([{"args": list(c.args), "what": c.what} for c in calls]))
     return inputs
+
+
+def keyed(name, inputs):
+    """The calls of exercise ``name`` on ``inputs`` (as :func:`draw_inputs` gives them), with the answer key."""
+    return references.complete(name, [Call(tuple(c["args"]), c["what"]) for c in inputs])
 
 
 @functools.cache
@@ -130,18 +145,19 @@ class Cache:
     def __init__(self, folder):
         self.folder = pathlib.Path(folder)
 
-    def _path(self, sha, label):
-        return self.folder / sha[:2] / sha / f"{label}.json"
+    def _path(self, sha, label, key):
+        """One entry per notebook, exercise and key (two students with the same notebook get other input)."""
+        return self.folder / sha[:2] / sha / f"{label}-{key[:16]}.json"
 
     def load(self, sha, label, key):
         try:
-            data = json.loads(self._path(sha, label).read_text())
+            data = json.loads(self._path(sha, label, key).read_text())
         except (OSError, ValueError):
             return None
         return data.get("entry") if data.get("key") == key else None
 
     def store(self, sha, label, key, entry):
-        path = self._path(sha, label)
+        path = self._path(sha, label, key)
         path.parent.mkdir(parents=True, exist_ok=True)
         temporary = path.with_suffix(f".{os.getpid()}.tmp")
         temporary.write_text(json.dumps({"key": key, "entry": entry}))
@@ -253,10 +269,11 @@ def _failed(facts, limits):
                       f"{facts.get('log', '').strip() or 'no message'}")
 
 
-def assess(label, meta, entry, calls, cells, limits):
+def assess(label, meta, entry, inputs, cells, limits):
     """``{"points", "max", "lines", "problem", "right"}`` for one exercise of one submission."""
     name, answer, points = checks.CHECKS[meta["check"]], meta["answer"], meta.get("points", 1)
     exercise, raw, notes = checks.EXERCISES[name], entry.get("raw"), []
+    calls = keyed(name, inputs)
     if "notebook" in entry:
         problem = entry["notebook"]
     elif entry.get("ungraded"):
@@ -284,14 +301,12 @@ def assess(label, meta, entry, calls, cells, limits):
                 "right": [0, len(calls)]}
     right = right_inputs(exercise, calls, raw) if raw is not None else [False] * len(calls)
     earned = points if problem is None else round(points * sum(right) / len(calls), 2) if meta.get("partial") else 0
-    verdict_line = (f"✓ {answer} passed on {len(calls)} fresh random inputs" if problem is None
+    verdict_line = (f"✓ {answer} passed on {len(calls)} hidden inputs" if problem is None
                     else f"✗ {answer}: {printable(problem)}")
     lines = [f"{label}: {earned:g}/{points:g}" + (f" ({sum(right)} of {len(calls)} inputs right)"
                                                     if meta.get("partial") and problem else ""), "  " + verdict_line]
-    wrong = collections.Counter(c.what for c, r in zip(calls, right, strict=True) if not r)
-    if problem is not None and isinstance(raw, list) and wrong:
-        lines.append(f"  wrong on {sum(wrong.values())} of {len(calls)} inputs: " + "; ".join(
-            what + (f" (x{count})" if count > 1 else "") for what, count in wrong.items()))
+    if problem is not None and isinstance(raw, list) and not all(right):  # the count only: the verdict names one input
+        lines.append(f"  wrong on {len(right) - sum(right)} of {len(calls)} hidden inputs")
     lines += [f"  note: {printable(note)}" for note in notes]
     lines += ["  " + line for line in cell_story(entry, cells or [], limits)]
     return {"points": earned, "max": points, "lines": lines, "problem": problem, "right": [sum(right), len(calls)]}
@@ -300,15 +315,17 @@ def assess(label, meta, entry, calls, cells, limits):
 # ------------------------------------------------------------------ a class
 
 
-def grade_one(submission, table, inputs, limits, out, forced, cached_only):
+def grade_one(submission, table, secret, limits, out, forced, cached_only):
     """The record of one submission (the fields ``exports`` reads); its executed notebook is written to ``out``."""
     coding = table[submission.chapter]["coding"]
     try:
         data = submission.path.read_bytes()
     except OSError as error:
         data = f"not read: {error}".encode()
-    nb, cells, entries, problem = run_notebook(data, coding, {label: inputs[label] for label in coding}, limits,
-                                               Cache(out / "cache"), forced(submission, coding), cached_only)
+    parsed, _ = parse_notebook(data)
+    inputs = draw_inputs(coding, secret, submission.student, code_key(parsed and parsed[1]))
+    nb, cells, entries, problem = run_notebook(data, coding, inputs, limits, Cache(out / "cache"),
+                                               forced(submission, coding), cached_only)
     record = {"student": submission.student, "chapter": submission.chapter, "path": str(submission.path),
               "points": {}, "max": {}, "problem": {}, "right": {}, "lines": [],
               "ungraded": any(e.get("ungraded") for e in entries.values()),
@@ -316,8 +333,7 @@ def grade_one(submission, table, inputs, limits, out, forced, cached_only):
     if problem:
         record["lines"].append(f"✗ {problem}")
     for label, meta in coding.items():
-        calls = [Call(tuple(c["args"]), c["what"]) for c in inputs[label]]
-        result = assess(label, meta, entries[label], calls, cells, limits)
+        result = assess(label, meta, entries[label], inputs[label], cells, limits)
         for field in ("points", "max", "problem", "right"):
             record[field][label] = result[field]
         record["lines"] += result["lines"]
@@ -328,11 +344,11 @@ def grade_one(submission, table, inputs, limits, out, forced, cached_only):
     return record
 
 
-def grade_safely(submission, table, inputs, limits, out, forced, cached_only):
+def grade_safely(submission, table, secret, limits, out, forced, cached_only):
     """:func:`grade_one`, or, when the grader fails on this submission, a record that says so: no
     points (not a zero), a line for the student, the traceback in ``grader-errors.log``."""
     try:
-        return grade_one(submission, table, inputs, limits, out, forced, cached_only)
+        return grade_one(submission, table, secret, limits, out, forced, cached_only)
     except Exception as error:  # noqa: BLE001 - one submission never stops a class
         import traceback
 
@@ -352,7 +368,7 @@ def grade_safely(submission, table, inputs, limits, out, forced, cached_only):
                 "ungraded": False, "cached": False, "fault": f"{type(error).__name__}: {reason}"}
 
 
-def grade(submissions, table, inputs, limits, out, jobs=None, only=(), students=(), cached_only=False, progress=None):
+def grade(submissions, table, secret, limits, out, jobs=None, only=(), students=(), cached_only=False, progress=None):
     """Grade ``submissions`` in parallel (``only`` exercises and ``students`` are graded afresh); their records.
 
     Whatever happens to one submission, the others are graded (:func:`grade_safely`)."""
@@ -360,7 +376,7 @@ def grade(submissions, table, inputs, limits, out, jobs=None, only=(), students=
         return set(coding) if submission.student in students else set(only) & set(coding)
 
     with concurrent.futures.ThreadPoolExecutor(jobs or os.cpu_count()) as pool:
-        futures = [pool.submit(grade_safely, s, table, inputs, limits, pathlib.Path(out), forced, cached_only)
+        futures = [pool.submit(grade_safely, s, table, secret, limits, pathlib.Path(out), forced, cached_only)
                    for s in submissions]
         records = []
         for future in futures:
@@ -484,14 +500,13 @@ def main(argv=None):
     out.mkdir(parents=True, exist_ok=True)
     exports.save_state(out, state)  # what the instructor entered is kept before anything runs
     start = time.monotonic()
-    inputs = draw_inputs({c: table[c] for c in {s.chapter for s in graded_here}}, secret)
 
     def progress(done, total):
         if sys.stderr.isatty() and total > 1:
             print(f"\rgraded {done} of {total} submissions", end="\n" if done == total else "", file=sys.stderr,
                   flush=True)
 
-    records = grade(graded_here, table, inputs, limits, out, args.jobs, set(args.only), set(args.student), args.merge,
+    records = grade(graded_here, table, secret, limits, out, args.jobs, set(args.only), set(args.student), args.merge,
                     progress)
     seconds = time.monotonic() - start
     ungraded = [r for r in records if r["ungraded"]]

@@ -12,12 +12,17 @@ as ``python -m instructor.grade`` grades it (the same sandbox where the containe
 as user ``nobody``), and ``/autograder/results/results.json`` gets one test per coding exercise
 (``name``, ``score``, ``max_score``, ``output``: the feedback, ``visibility``).
 
-The bundle holds ``ddg`` (the checks), ``instructor`` (the grader) and ``autograder.json``: the
-chapter's exercises and points from the instructor's notebook, the limits, and the *input* drawn
-from the secret. The secret itself is not in it, nor is any notebook of the book: what a student
-could find, had they a way out of the sandbox, is the input their own answer is called with.
+The bundle holds ``ddg`` (the checks), ``instructor`` (the grader and its answer key) and
+``autograder.json``: the chapter's exercises and points from the instructor's notebook, the limits
+and a key derived from the secret for this chapter alone (never the secret itself), from which each
+submission's hidden input is drawn for its student (the user ids in Gradescope's
+``submission_metadata.json``) and its code, as ``python -m instructor.grade`` draws it. The zip is
+the instructor's (Gradescope keeps it in ``/autograder/source``, which ``setup.sh`` closes to every
+user but root); the sandbox receives neither that key nor the answer key, and no notebook of the
+book is in the bundle.
 """
 
+import hashlib
 import json
 import pathlib
 import re
@@ -86,7 +91,6 @@ def build(path, table, chapter, secret, limits):
     """Write the autograder zip for ``chapter`` (the only chapter with coding exercises if ``None``)."""
     import ddg
 
-    from . import grade
 
     coded = [c for c, chapter_table in table.items() if chapter_table["coding"]]
     if chapter is None:
@@ -97,8 +101,8 @@ def build(path, table, chapter, secret, limits):
         raise SystemExit(f"error: --chapter {chapter}: no chapter with coding exercises has this name "
                          f"(one of {', '.join(coded)})")
     coding = table[chapter]["coding"]
-    inputs = grade.draw_inputs({chapter: table[chapter]}, secret)
-    config = {"chapter": chapter, "coding": coding, "inputs": inputs, "limits": limits, "visibility": VISIBILITY}
+    key = hashlib.sha256(json.dumps(["gradescope", secret, chapter]).encode()).hexdigest()  # this chapter's only
+    config = {"chapter": chapter, "coding": coding, "secret": key, "limits": limits, "visibility": VISIBILITY}
     minor = sys.version_info[1]
     versions = " ".join(f"3.{m}" for m in [minor, *(m for m in (13, 12, 11) if m != minor)])
     package = pathlib.Path(ddg.__file__).parent
@@ -151,24 +155,33 @@ def run(root="/autograder"):
         return results
 
 
-def _run(root, start):
-    from ddg.checks.judge import Call
+def _student(root):
+    """Who submitted, as Gradescope's ``submission_metadata.json`` says (its users' ids; "" if it does not)."""
+    try:
+        users = json.loads((root / "submission_metadata.json").read_text()).get("users") or []
+        return ",".join(sorted(str(u.get("id", "")) for u in users if isinstance(u, dict)))
+    except (OSError, ValueError, AttributeError):
+        return ""
 
+
+def _run(root, start):
     from . import grade
 
     config = json.loads((root / "source" / "autograder.json").read_text())
     chapter, coding, limits = config["chapter"], config["coding"], config["limits"]
     path, problem = _notebook(root / "submission", chapter)
+    data = path.read_bytes() if path is not None else b""
+    parsed, _ = grade.parse_notebook(data)
+    inputs = grade.draw_inputs(coding, config["secret"], _student(root), grade.code_key(parsed and parsed[1]))
     if path is None:
         cells, entries = [], {label: {"notebook": problem} for label in coding}
     else:
-        _, cells, entries, problem = grade.run_notebook(path.read_bytes(), coding, config["inputs"], limits)
+        _, cells, entries, problem = grade.run_notebook(data, coding, inputs, limits)
     output = "\n".join(line for line in (path and f"graded: {path.relative_to(root / 'submission')}",
                                           problem and f"✗ {problem}") if line)
     tests = []
     for label, meta in coding.items():
-        calls = [Call(tuple(c["args"]), c["what"]) for c in config["inputs"][label]]
-        result = grade.assess(label, meta, entries[label], calls, cells, limits)
+        result = grade.assess(label, meta, entries[label], inputs[label], cells, limits)
         tests.append({"name": f"{label}: {meta['answer']}", "score": result["points"], "max_score": result["max"],
                       "output": "\n".join(result["lines"]), "visibility": config.get("visibility", VISIBILITY)})
     results = {"score": round(sum(t["score"] for t in tests), 2), "execution_time": round(time.monotonic() - start),

@@ -3,11 +3,16 @@
 The grader (``instructor/sandbox.py``) runs :func:`main` with a job on standard input::
 
     {"cells": [source of each cell, or null for a markdown cell], "cell_timeout": s, "answer_timeout": s,
-     "exercises": [{"label", "name" (the exercise in ddg.checks), "answer" (the function), "specs"}]}
+     "results_fd": n, "specs_fd": n,
+     "exercises": [{"label", "name" (the exercise in ddg.checks), "answer" (the function),
+                    "specs_at": [[offset, length] of each input's specs, a JSON line in specs_fd]]}]}
 
-and reads what it finds, one JSON line per exercise, from the file descriptor the job names, which
-only this process holds. The job holds the input specs drawn by the grader, never the secret they were
-drawn from, and nothing here judges: the grader does, with the raw results.
+and reads what it finds, one JSON line per exercise, from the file descriptor ``results_fd``, which
+only this process holds. The input specs drawn by the grader (never the secret they were drawn
+from, never what a right answer returns) are in the file ``specs_fd``, which only this process
+holds and never reads into its own memory: each input goes from there straight (``os.sendfile``)
+to the one process that answers it, when that process asks, once. So no process that runs the
+submission's code ever holds another input than its own; nothing here judges: the grader does.
 
 For each exercise, in a child process of its own:
 
@@ -16,8 +21,10 @@ For each exercise, in a child process of its own:
 2. only the cells the answer needs run (:func:`plan`: the last cell that defines the answer, then,
    recursively, for each name a chosen cell uses, the cell that defines it), one by one, in
    IPython (magics work), each with a time limit: a loop elsewhere in the notebook costs nothing;
-3. the answer runs on the specs in ``ddg.checks.answer_results`` (another process, the checks'
-   code gone, a time limit), and its raw results go back to the grader.
+3. the answer runs on the input in ``ddg.checks.answer_results``: each input in a process of its
+   own, which asks this process for it (:func:`_serve`), with the checks' code gone, under a time
+   limit; the raw results go back to the grader. Nothing of the grader (``instructor``) can be
+   imported by the submission.
 
 A cell that must be killed (it ignored its time limit, ended the process, or was killed for
 memory) is skipped, and the exercise runs again without it. The cells' outputs go back too: the
@@ -198,8 +205,18 @@ class _Capture(io.TextIOBase):
         return "".join(self.parts) + cut
 
 
-def _child(shell, cells, order, exercise, limits, channel):
-    """In the exercise's process: switch off, run the cells, run the answer; report on ``channel``."""
+class _NoGrader:
+    """An import hook that refuses the grader's own modules (its answer key among them)."""
+
+    def find_spec(self, name, path=None, target=None):
+        if name == "instructor" or name.startswith("instructor."):
+            raise ImportError(f"{name} is the grader's, not for a submission")
+        return None
+
+
+def _child(shell, cells, order, exercise, limits, channel, feed):
+    """In the exercise's process: switch off, run the cells, run the answer; report on ``channel``; each
+    input arrives on ``feed``, asked for by the process that answers it."""
     from ddg.checks import answer_results, runner
     from ddg.checks import EXERCISES
 
@@ -208,6 +225,16 @@ def _child(shell, cells, order, exercise, limits, channel):
         view = memoryview(data)
         while view:
             view = view[os.write(channel, view):]
+
+    def fetch(i):  # in the process that answers input i
+        send({"input": i})
+        data = b""
+        while not data.endswith(b"\n"):
+            chunk = os.read(feed, 1 << 16)
+            if not chunk:
+                raise EOFError("the grader sent no input")
+            data += chunk
+        return json.loads(data)
 
     null = os.open(os.devnull, os.O_RDWR)
     for fd in (0, 1, 2):  # C-level output of the submission goes nowhere, and it reads nothing
@@ -219,6 +246,9 @@ def _child(shell, cells, order, exercise, limits, channel):
         pass
     checked = EXERCISES[exercise["name"]]
     runner.switch_off(checked.forbidden, checked.measures)
+    for name in [m for m in sys.modules if m == "instructor" or m.startswith("instructor.")]:
+        sys.modules[name] = None
+    sys.meta_path.insert(0, _NoGrader())
     errors = []
     shell._showtraceback = lambda etype, value, stb: errors.append(
         {"ename": etype.__name__, "evalue": str(value)[:500], "traceback": [str(s)[:4000] for s in stb][-6:]})
@@ -247,7 +277,8 @@ def _child(shell, cells, order, exercise, limits, channel):
     answer = shell.user_ns.get(exercise["answer"], _child)
     send({"answer": None if answer is _child else type(answer).__name__})
     if answer is not _child:
-        send({"raw": answer_results(exercise["name"], answer, exercise["specs"], limits["answer"])})
+        send({"raw": answer_results(exercise["name"], answer, runner.Feed(len(exercise["specs_at"]), fetch),
+                                    limits["answer"])})
 
 
 # ------------------------------------------------------------------ the parent: deadlines and reports
@@ -299,18 +330,39 @@ def _checked(message, order):
                 "timeout": message.get("timeout") is True}
     if "answer" in message:
         return {"answer": message["answer"] if isinstance(message["answer"], str) else None}
+    if "input" in message:
+        return {"input": message["input"]} if type(message["input"]) is int else None
     return {"raw": message["raw"]} if "raw" in message else None
 
 
-def run_once(shell, cells, order, exercise, limits):
+def _serve(out, specs, at, deadline):
+    """Send one input's specs (``at``: offset and length in the file ``specs``) to ``out``, kernel to kernel."""
+    offset, length = at
+    while length > 0 and time.monotonic() < deadline:
+        if not select.select([], [out], [], max(0.0, deadline - time.monotonic()))[1]:
+            return
+        try:
+            sent = os.sendfile(out, specs, offset, length)
+        except BlockingIOError:
+            continue
+        if not sent:
+            return
+        offset, length = offset + sent, length - sent
+
+
+def run_once(shell, cells, order, exercise, limits, specs):
     """Run one child for ``exercise`` over the cells ``order``; what it reported, and where it was stopped."""
     read, write = os.pipe()
+    feed, serve = os.pipe()
     pid = os.fork()
     if pid == 0:
         try:
             os.close(read)
-            os.closerange(3, write)  # the grader's results file among them: only the harness writes there
-            os.closerange(write + 1, 1 << 16)
+            os.close(serve)
+            keep = sorted((write, feed))
+            os.closerange(3, keep[0])  # the grader's results and specs files among them: only the harness has those
+            os.closerange(keep[0] + 1, keep[1])
+            os.closerange(keep[1] + 1, 1 << 16)
             os.setpgid(0, 0)
             try:  # it ends with the harness, sandbox or not
                 import ctypes
@@ -318,10 +370,13 @@ def run_once(shell, cells, order, exercise, limits):
                 ctypes.CDLL(None).prctl(1, signal.SIGKILL, 0, 0, 0)  # PR_SET_PDEATHSIG
             except (OSError, AttributeError):
                 pass
-            _child(shell, cells, order, exercise, limits, write)
+            _child(shell, cells, order, exercise, limits, write, feed)
         finally:
             os._exit(0)
     os.close(write)
+    os.close(feed)
+    os.set_blocking(serve, False)
+    served = 0  # each input once, in order
     reports, buffer, received, current = [], b"", 0, None
     deadline, stopped = time.monotonic() + 30, None
     while True:
@@ -347,6 +402,11 @@ def run_once(shell, cells, order, exercise, limits):
                 continue
             if message is None:
                 continue
+            if "input" in message:
+                if message["input"] == served < len(exercise["specs_at"]):
+                    _serve(serve, specs, exercise["specs_at"][served], deadline)
+                    served += 1
+                continue
             reports.append(message)
             if "start" in message:
                 current, deadline = message["start"], time.monotonic() + limits["cell"] + GRACE
@@ -357,6 +417,7 @@ def run_once(shell, cells, order, exercise, limits):
         if reports and "raw" in reports[-1]:  # the last word: nothing the child sends after it counts
             break
     os.close(read)
+    os.close(serve)
     _stop_child(pid)
     status = None
     try:
@@ -371,7 +432,7 @@ def run_once(shell, cells, order, exercise, limits):
     return reports, stopped
 
 
-def run_exercise(shell, cells, info, exercise, limits):
+def run_exercise(shell, cells, info, exercise, limits, specs):
     """Everything the grader needs to know about one exercise (see the module's docstring)."""
     order = plan(info, exercise["answer"])
     result = {"label": exercise["label"], "plan": order if isinstance(order, list) else [], "ran": [],
@@ -384,7 +445,7 @@ def run_exercise(shell, cells, info, exercise, limits):
         return result
     skipped = set()
     for _ in range(3):
-        reports, stopped = run_once(shell, cells, [i for i in order if i not in skipped], exercise, limits)
+        reports, stopped = run_once(shell, cells, [i for i in order if i not in skipped], exercise, limits, specs)
         for report in reports:
             if "end" in report and str(report["end"]) not in result["cells"]:
                 i = report["end"]
@@ -406,9 +467,10 @@ def run_exercise(shell, cells, info, exercise, limits):
 
 def preload():
     """What the chapters import, loaded once before any submission: each process forked for one starts with it
-    (the sandbox's zygote calls this; so does :func:`main`, where it then costs nothing)."""
+    (the sandbox's zygote calls this; so does :func:`main`, where it then costs nothing). Every module of
+    ``ddg`` among them: the sandbox hides ddg's source files."""
     os.environ.setdefault("MPLBACKEND", "Agg")
-    for name in ("numpy", "shapely", "matplotlib.pyplot", "ddg", "ddg.checks", "ddg.plot", "ddg.explore",
+    for name in ("numpy", "shapely", "matplotlib.pyplot", "ddg", "ddg.checks", "ddg.plot", "ddg.explore", "ddg.scene",
                  "IPython.core.interactiveshell", "IPython.core.completer", "traitlets.config"):
         try:
             __import__(name)
@@ -424,6 +486,7 @@ def main():
         job = json.load(source)
     results = os.fdopen(job["results_fd"], "w", buffering=1)
     os.set_inheritable(job["results_fd"], False)
+    os.set_inheritable(job["specs_fd"], False)
     try:  # no process of the same user may read this one's memory or descriptors
         import ctypes
 
@@ -436,6 +499,6 @@ def main():
     info = analyse(cells, shell.transform_cell)
     limits = {"cell": float(job["cell_timeout"]), "answer": float(job["answer_timeout"])}
     for exercise in job["exercises"]:
-        result = run_exercise(shell, cells, info, exercise, limits)
+        result = run_exercise(shell, cells, info, exercise, limits, job["specs_fd"])
         results.write(json.dumps(result) + "\n")
     results.write(json.dumps({"done": True}) + "\n")

@@ -46,13 +46,13 @@ def test_make_book_shows_a_change_in_ddg_and_the_strict_build_catches_a_broken_d
     else:
         run(["make", "book"], cwd=copy)
     page = copy / "_build" / "html" / "book" / "02_discrete_curves.html"
-    assert re.search(r"passed on \d+ fresh random inputs", page.read_text())
+    assert re.search(r"passed on \d+ public inputs", page.read_text())
 
     notebooks = trim_book(copy)
 
     checks = copy / "ddg" / "checks" / "judge.py"
     source = checks.read_text()
-    shown = "passed on {self.inputs} fresh random inputs"  # what Feedback prints
+    shown = "passed on {self.inputs} {self.kind} inputs"  # what Feedback prints
     assert source.count(shown) == 1
     checks.write_text(source.replace(shown, "passed on {self.inputs} inputs (rebuilt after a change to ddg)"))
     result = run(["make", "book"], cwd=copy)
@@ -63,7 +63,7 @@ def test_make_book_shows_a_change_in_ddg_and_the_strict_build_catches_a_broken_d
     for chapter in ("01_smooth_curves", "02_discrete_curves", "03_winding_number"):
         html = (copy / "_build" / "html" / "book" / f"{chapter}.html").read_text()
         assert "(rebuilt after a change to ddg)" in html, chapter
-        assert "fresh random inputs" not in html, chapter
+        assert "public inputs" not in html, chapter
 
     css = copy / "book" / "_assets" / "ddg-book.css"
     css.write_text(css.read_text() + "\n/* restyled after the first build */\n")
