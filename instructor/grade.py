@@ -532,6 +532,8 @@ def main(argv=None):
     others = sum(key not in latest for key in kept)
     print(f"graded {len(records)} submissions ({cached} from earlier results) in {seconds:.0f} s"
           + (f"; {others} results of earlier runs kept" if others else ""))
+    if cached < len(records):
+        print(f"  each submission's processes bounded together by: {sandbox.limits()}")
     for path in written:
         print(f"  {path.resolve()}")
     if problems:
