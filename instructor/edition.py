@@ -10,7 +10,15 @@ The book's notebooks mark their homework like this:
 In the student edition each solution block is removed. Its ``solution`` cells become starter code
 (the same function signatures and docstrings, bodies replaced by ``raise NotImplementedError``;
 other statements become ``name = ...``), and its ``check`` cells stay, so students get immediate
-feedback on their own code. The exercise texts are kept unchanged.
+feedback on their own code. The exercise texts are kept unchanged. A hidden cell tagged
+``answer-key`` (one that asserts the book's claims with an exercise's answer) is removed too, one
+tagged ``answer-stub`` (an answer a later chapter uses) becomes its starter, and the lab's script
+for chapter 6's circle curvature (``ddg-lab-circle.js``), an answer, is left out.
+
+No answer key leaves the instructor: the edition's ``ddg/checks/public.json`` (the input of the
+students' checks, with what a right answer returns) is written afresh from the answer key
+(``instructor/references.py``), and ``make student`` runs the leak guard (``instructor/guard.py``)
+on the result before it calls the edition done.
 """
 
 import argparse
@@ -29,6 +37,9 @@ MANIFEST = ".edition.json"
 changes from the edition's own files (changed notebooks are never overwritten or deleted)."""
 
 STARTER_NOTE = "# Exercise: write your answer here, then run the check below."
+
+ANSWER_SCRIPTS = ("ddg-lab-circle.js",)
+"""The book's scripts that compute an exercise's answer: left out of the student edition and its site."""
 
 
 def starter(source):
@@ -107,6 +118,10 @@ def student_notebook(nb):
                 raise ValueError("a {solution-end} without its {solution-start}")
             inside = False
             continue
+        if "answer-key" in tags:
+            continue
+        if "answer-stub" in tags:
+            cell.source = starter(cell.source)
         if not inside:
             cells.append(cell)
         elif "solution" in tags:
@@ -160,10 +175,13 @@ code and a check (`ddg.checks`) that says at once whether an answer is right, an
 - Run the notebooks: `pip install -r requirements.txt`, then `jupyter lab book/`.
 - In Colab or a plain Jupyter, a notebook's first cell installs the course's package `ddg`.
 
+The checks run your answers on public input, whose right results ship with `ddg`
+(`ddg/checks/public.json`); your instructor grades them on other, hidden input.
+
 This folder was written by `make student` in the course repository. To publish it, put everything
 but `html/` and `_build/` in the repository the course gives students (set `STUDENT_REPO` to its
-URL when running `make student`, so that the launch buttons lead there), and serve `html/` as the
-student site.
+URL when running `make student`, so that the launch buttons and the notebooks' set-up cells lead
+there), and serve `html/` as the student site.
 """
 
 
@@ -175,6 +193,8 @@ def _configure(config, student_repo):
                     config)
     config = config.replace("html_static_path: [.venv/vendor", "html_static_path: [_vendor")  # portable
     config = re.sub(r"(exclude_patterns: \[)", r"\1html, _vendor, ", config)
+    for script in ANSWER_SCRIPTS:
+        config = re.sub(rf"\[{re.escape(script)}, \{{[^}}]*\}}\],\s*", "", config)
     if student_repo:
         config = re.sub(r"^(repository:\s*\n\s+url:\s*)\S+", lambda m: m.group(1) + student_repo, config,
                         flags=re.MULTILINE)
@@ -205,23 +225,25 @@ def write_edition(root, out, force=False, vendor=None, student_repo=None):
     for path in sorted((root / "book").iterdir()):
         if path.suffix == ".ipynb":
             nb = student_notebook(nbformat.read(path, as_version=4))
-            if student_repo:
-                for cell in nb.cells:
-                    cell.source = re.sub(r'^REPOSITORY = "[^"]*"', f'REPOSITORY = "{student_repo}"', cell.source,
-                                         flags=re.MULTILINE)
+            for cell in nb.cells:  # the set-up cell installs ddg from the student repository, never the course's
+                cell.source = re.sub(r'^REPOSITORY = "[^"]*"', f'REPOSITORY = "{student_repo or ""}"', cell.source,
+                                     flags=re.MULTILINE)
             target = out / "book" / path.name
             nbformat.write(nb, target)
             written[path.name] = _sha256(target)
         elif path.is_file():
             shutil.copy(path, out / "book" / path.name)
         elif path.name == "_assets":  # the book's own styles and scripts
-            shutil.copytree(path, out / "book" / path.name)
+            shutil.copytree(path, out / "book" / path.name, ignore=shutil.ignore_patterns(*ANSWER_SCRIPTS))
     (out / "book" / MANIFEST).write_text(json.dumps(written, indent=1) + "\n")
     shutil.copy(root / "_toc.yml", out / "_toc.yml")
     config = _configure((root / "_config.yml").read_text(), student_repo)
     (out / "_config.yml").write_text(config)
     shutil.copytree(pathlib.Path(vendor or root / ".venv" / "vendor"), out / "_vendor")
     shutil.copytree(root / "ddg", out / "ddg", ignore=shutil.ignore_patterns("__pycache__"))
+    from . import references
+
+    references.write_public(out / "ddg" / "checks" / "public.json")  # from the answer key, which stays here
     extensions = sorted(p.relative_to(root) for p in (root / "tools").glob("sphinx_*.py"))  # the book's Sphinx extensions
     for name in ("pyproject.toml", "requirements.txt", *extensions):
         (out / name).parent.mkdir(parents=True, exist_ok=True)

@@ -14,7 +14,8 @@
     The student edition (``python -m instructor.edition``) in ``_build/student``, executed and
     built like the book into ``_build/student/html``. The outputs of the last edition's notebooks
     are kept while :func:`inputs` is unchanged, so only notebooks whose code changed run again;
-    ``--fresh`` runs them all.
+    ``--fresh`` runs them all. Then the leak guard (``instructor/guard.py``): if any function of the
+    edition passes an exercise's hidden check, the site is removed and the step fails, naming it.
 ``pdf``
     Both editions printed by Chromium (``tools/pdf.py``), side by side: ``_build/pdf``; the book is
     built first where missing, the student edition again where it is older than the book.
@@ -118,6 +119,9 @@ def student(fresh=False, force=False, student_repo=None):
     run(JB, "build", out, "-W", "-n", "--keep-going")
     shutil.rmtree(out / "html", ignore_errors=True)
     shutil.move(out / "_build" / "html", out / "html")
+    if subprocess.run([sys.executable, "-m", "instructor.guard", str(out)], cwd=ROOT).returncode != 0:
+        shutil.rmtree(out / "html")  # nothing to publish
+        sys.exit("make student: the student edition was not finished (its site removed): see above")
     print(f"The student site is at {out / 'html' / 'index.html'}")
 
 

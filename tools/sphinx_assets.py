@@ -39,6 +39,7 @@ logger = logging.getLogger(__name__)
 FOLDS, CODE = re.compile(r'class="[^"]*\b(toggle|dropdown)\b'), re.compile(r'<div class="highlight')
 LAB = re.compile(r'class="ddg-lab"')  # the lab of chapter 10: ddg's formulas in JavaScript, and the page's lab
 USES = {"ddg-player.js": re.compile(r'class="ddg-explorer"'), "ddg-lab.js": LAB, "ddg-lab-page.js": LAB,
+        "ddg-lab-circle.js": LAB,
         "polygon-clipping.umd.min.js": LAB,
         "togglebutton.js": FOLDS, "togglebutton.css": FOLDS,
         "clipboard.min.js": CODE, "copybutton.js": CODE, "copybutton.css": CODE, "design-tabs.js": None,

@@ -1,6 +1,7 @@
 /* The lab on the page (book/10_explorers): a polygon the reader shapes (presets, drawing, dragging,
- * arrow keys, adding and removing vertices, undo), coloured by a discrete curvature (ddg's three, or
- * the circle through three vertices of chapter 6's exercise, circle_curvature below), with the
+ * arrow keys, adding and removing vertices, undo), coloured by a discrete curvature (ddg's three, and
+ * in the instructor's edition the circle through three vertices of chapter 6's exercise, from
+ * ddg-lab-circle.js, which the student edition leaves out: it is an answer), with the
  * gradient of length as arrows, the curvature along the polygon beside the smooth curve's, the
  * polygon inflated by eps (the formula's area beside the area of the region, measured as a union of
  * polygons by polygon-clipping), and the three curve-shortening flows run side by side from it.
@@ -116,18 +117,6 @@
     });
     return {rectangles: rectangles, corners: corners};
   }
-  /* Chapter 6's fourth curvature (its exercise ex-circle-curvature), which ddg leaves to the reader:
-   * the signed reciprocal radius of the circle through v_{i-1}, v_i, v_{i+1}, 2 sin(psi_i) / |v_{i+1} - v_{i-1}|
-   * (law of sines; positive where the polygon turns clockwise). The tests compare it with the grader's
-   * own, measured from the circle's centre. */
-  function circle_curvature(curve) {
-    var v = curve.vertices, n = v.length;
-    return curve.turning_angles.map(function (psi, i) {
-      var p = v[(i + n - 1) % n], q = v[(i + 1) % n], chord = Math.hypot(q[0] - p[0], q[1] - p[1]);
-      if (!(chord > 0)) throw new Error("no circle through vertices " + ((i + n - 1) % n) + ", " + i + " and " + ((i + 1) % n) + ": the first and the last coincide");
-      return 2 * Math.sin(psi) / chord;
-    });
-  }
   function crossing(v) {  // the first two edges, not neighbours, that meet: [i, j] (from v_i and from v_j); null if simple
     var n = v.length, o = function (a, b, c) { return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]); };
     var on = function (a, b, c) {  // c, on the line through a and b, lies between them
@@ -142,7 +131,8 @@
     }
     return null;
   }
-  var KINDS = window.ddgLab.CURVATURES.concat(["circle"]);  // the curvatures the lab shows: ddg's three and chapter 6's circle
+  // the curvatures the lab shows: ddg's three, and chapter 6's circle where ddg-lab-circle.js is there
+  var KINDS = window.ddgLab.CURVATURES.concat(window.ddgLab.circle_curvature ? ["circle"] : []);
   function regionArea(region) {  // a multipolygon of polygon-clipping: outer rings counter-clockwise, holes clockwise
     return region.reduce(function (total, polygon) {
       return polygon.reduce(function (sum, ring) { return sum + window.ddgLab.signed_area_ccw(ring.slice(0, -1)); }, total);
@@ -393,7 +383,7 @@
     try { curve = new lab.DiscreteCurve(v); } catch (e) { parts.push("Not a polygon the lecture allows: " + e.message + "."); }
     if (curve) {
       KINDS.forEach(function (name) {
-        try { ks[name] = name === "circle" ? circle_curvature(curve) : curve.curvature(name); } catch (e) { ks[name] = e; }
+        try { ks[name] = name === "circle" ? lab.circle_curvature(curve) : curve.curvature(name); } catch (e) { ks[name] = e; }
       });
       gradient = curve.length_gradient();
       k = Array.isArray(ks[kind]) ? ks[kind] : null;

@@ -103,3 +103,35 @@ def test_a_starter_keeps_every_definition_and_compiles(case):
 def test_a_magic_in_a_solution_is_a_clear_error(line):
     with pytest.raises(ValueError, match=re.escape(f"must be plain Python, but it has the line '{line.strip()}'")):
         edition.starter(f"import numpy as np\n{line}\ndef f(x):\n    return x\n")
+
+
+def test_no_answer_key_leaves_the_instructor(tmp_path):
+    """The edition carries the checks' public input with its expected values, made from the answer key,
+    but no code of the key: no answer-key cell, no reference in ddg/checks, not the lab's circle
+    curvature; its notebooks install ddg from no repository but the student one."""
+    from instructor import references
+
+    out = edition.write_edition(ROOT, tmp_path / "edition")
+    cells = [c for path in sorted((out / "book").glob("*.ipynb")) for c in json.loads(path.read_text())["cells"]]
+    assert not [c for c in cells if "answer-key" in c["metadata"].get("tags", [])]
+    code = "\n".join("".join(c["source"]) for c in cells if c["cell_type"] == "code")
+    assert "def circle_k" not in code and "def theorem_area" not in code
+    assert 'REPOSITORY = ""' in code and "github.com/ddg-course" not in code
+    assert not (out / "book" / "_assets" / "ddg-lab-circle.js").exists()
+    assert "ddg-lab-circle" not in (out / "_config.yml").read_text()
+    source = "\n".join(p.read_text() for p in (out / "ddg" / "checks").glob("*.py"))
+    assert "def expected" in source and source.count("def expected") == 1  # the one that reads Call.want
+    assert not (out / "instructor").exists()
+    assert json.loads((out / "ddg" / "checks" / "public.json").read_text()) == references.public_sets()
+    book = [c for path in NOTEBOOKS for c in json.loads(path.read_text())["cells"]]
+    tags = [t for c in book for t in c["metadata"].get("tags", [])]
+    assert tags.count("answer-key") == 4 and tags.count("answer-stub") == 1  # what the edition drops or stubs
+
+
+def test_the_public_input_is_current():
+    """ddg/checks/public.json is what the answer key makes (python -m instructor.references writes it)."""
+    from instructor import references
+
+    shipped = json.loads(references.PUBLIC.read_text())
+    assert shipped == references.public_sets(), "run: python -m instructor.references"
+    assert {name: len(sets) for name, sets in shipped.items()} == {name: references.PUBLIC_SETS for name in checks.EXERCISES}

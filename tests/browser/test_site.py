@@ -82,6 +82,7 @@ SCRIPTS = {
     "togglebutton.js": ".toggle, .admonition.dropdown",  # what folds: solutions
     "ddg-player.js": ".ddg-explorer", "ddg-states": ".ddg-explorer",  # explorers and animations, and their states
     "ddg-lab.js": ".ddg-lab", "ddg-lab-page.js": ".ddg-lab",  # the lab of chapter 10: ddg's formulas in JavaScript
+    "ddg-lab-circle.js": ".ddg-lab",  # and chapter 6's circle curvature (the instructor's edition only)
     "polygon-clipping.umd.min.js": ".ddg-lab",  # and the union with which it measures an inflated region
     "searchtools.js": "#search-results", "language_data.js": "#search-results", "searchindex.js": "#search-results",
 }
