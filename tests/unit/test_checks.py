@@ -55,6 +55,9 @@ def test_every_coding_exercise_has_a_check_and_six_catalogued_mistakes():
                         ("no cell tagged `check` calling its check in a chapter", exercises - {
                             checks.CHECKS[c] for c in called if c in checks.CHECKS}),
                         ("no reference solution (a cell tagged `solution`) in a chapter", exercises - set(REFERENCE)),
+                        ("no answer key (EXPECTED) in instructor/references.py", exercises - set(references.EXPECTED)),
+                        ("no public input: run python -m instructor.references", exercises - set(
+                            json.loads(checks.PUBLIC.read_text()))),
                         ("no entry in tests/unit/catalogue.py", exercises - set(CATALOGUE)),
                         ("a catalogue entry but no exercise in ddg/checks", set(CATALOGUE) - exercises),
                         ("a check called in a chapter that ddg.checks does not have", called - set(checks.CHECKS))):
