@@ -9,7 +9,7 @@ installs a Python of 3.11 or newer, a virtual environment in ``/autograder/venv`
 Gradescope starts a fresh container with the student's files in ``/autograder/submission`` and runs
 ``run_autograder``, which runs this module (:func:`run`): the notebook in the submission is graded
 as ``python -m instructor.grade`` grades it (the same sandbox where the container allows one; else
-as user ``nobody``), and ``/autograder/results/results.json`` gets one test per coding exercise
+as a user of its own), and ``/autograder/results/results.json`` gets one test per coding exercise
 (``name``, ``score``, ``max_score``, ``output``: the feedback, ``visibility``).
 
 The bundle holds ``ddg`` (the checks), ``instructor`` (the grader and its answer key) and

@@ -14,7 +14,10 @@ is, and exits with status 1. It looks at
   the hidden input of :data:`POLYGON_EXERCISES` (or on the script's own curve made of them).
 
 The book's own quantities (``ddg``'s turning angles, say, and their mirror in the lab's script)
-are allowed: the exercises that ask for them switch them off, so they pass no check.
+are allowed: the exercises that ask for them switch them off where they are implemented. What the
+guard cannot see: an answer that needs a line of glue around one of the edition's functions, or a
+function kept in a dict or a closure; ``tests/journeys/test_answer_key.py`` tries the shortcuts
+through ``ddg`` that we know of.
 """
 
 import argparse

@@ -345,6 +345,8 @@ def _serve(out, specs, at, deadline):
             sent = os.sendfile(out, specs, offset, length)
         except BlockingIOError:
             continue
+        except OSError:  # the submission closed its end of the pipe: it gets nothing
+            return
         if not sent:
             return
         offset, length = offset + sent, length - sent

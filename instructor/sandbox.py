@@ -9,7 +9,8 @@ which reads nothing of it but the paths of its own job.
 What bounds all of a submission's processes together, where the grader is root on Linux
 (:func:`limits` says it in words, and :func:`run` with each result):
 
-* a uid of its own, from :data:`FIRST_UID` on, one for each sandbox running at once (never one that
+* a uid of its own, from :data:`FIRST_UID` on (a block per PID namespace: a container's graders keep to
+  theirs), one for each sandbox running at once (never one that
   ``/etc/passwd``, ``/etc/group`` or a subordinate id range names), so that ``RLIMIT_NPROC``, which
   the kernel counts per uid, bounds how many processes it has, and whatever it leaves running is
   found and killed;
@@ -60,7 +61,6 @@ import pathlib
 import pwd
 import re
 import resource
-import select
 import shlex
 import shutil
 import signal
@@ -138,9 +138,11 @@ def _script(root, tmpfs_mb, uid):
             lines.append(f'ln -s {q(os.readlink(path))} "$R"{q(path)}')
         elif os.path.isdir(path):
             lines.append(f'mkdir -p "$R"{q(path)} && mount --bind -o ro,nosuid,nodev {q(path)} "$R"{q(path)}')
-    # ddg's source is hidden (the zygote has loaded every module of it): no copy of DiscreteCurve can be
-    # made by running ddg/curve.py again, with the quantity an exercise asks for left on
-    lines.append(f'mount -t tmpfs -o ro,mode=755,size=4k hidden "$R"{q(str(_ddg_home()))}')
+    # ddg's source is hidden, every copy of it (the zygote has loaded every module of it): no copy of
+    # DiscreteCurve can be made by running ddg/curve.py again, with the quantity an exercise asks for left on
+    places = [*binds, pathlib.Path("/usr"), pathlib.Path("/usr/local")]
+    copies = {_ddg_home(), *(d for place in places for d in place.glob("lib/python3*/*-packages/ddg"))}
+    lines += [f'mount -t tmpfs -o ro,mode=755,size=4k hidden "$R"{q(str(d))}' for d in sorted(copies) if d.is_dir()]
     lines.append('mount -t proc -o nosuid,nodev,noexec proc "$R/proc"')
     return "\n".join(lines)
 
@@ -333,6 +335,16 @@ def _reserved():
     return ranges
 
 
+def _first_uid():
+    """Where this grader's uids start: :data:`FIRST_UID`, plus a block of 256 chosen by its PID namespace, so
+    that graders in two containers of one machine (each with its own locks) do not share a uid."""
+    try:
+        block = os.stat("/proc/self/ns/pid").st_ino % 1024
+    except OSError:
+        block = 0
+    return FIRST_UID + 256 * block
+
+
 @contextlib.contextmanager
 def _own_uid():
     """A uid for one submission (``None`` unless :data:`OWN_UID`), held until the block ends: the first from
@@ -342,7 +354,7 @@ def _own_uid():
         yield None
         return
     LOCKS.mkdir(mode=0o700, parents=True, exist_ok=True)
-    for uid in itertools.count(FIRST_UID):
+    for uid in itertools.count(_first_uid()):
         if any(uid in taken for taken in _reserved()):
             continue
         lock = os.open(LOCKS / str(uid), os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW, 0o600)
@@ -466,11 +478,14 @@ def _face(pid, request):
     process of its uid is killed and reaped. Returns the exit status to report (128 + signal if killed)."""
     signal.signal(signal.SIGTERM, lambda *_: (_signal(pid), _signal(-pid)))
     uid, killed = request["uid"], set()
-    if request["watch"]:
-        ended = os.pidfd_open(pid)
-        while not select.select([ended], [], [], 0.05)[0]:
+    status = None
+    while request["watch"] and status is None:  # every 50 ms until the submission ends (waitpid: any kernel)
+        done, status = os.waitpid(pid, os.WNOHANG)
+        status = status if done else None
+        if status is None:
             _trim(uid, request["watch"], killed)
-    status = os.waitpid(pid, 0)[1]
+            time.sleep(0.05)
+    status = os.waitpid(pid, 0)[1] if status is None else status
     _signal(-pid)
     if uid is not None:
         _kill_all(uid)
@@ -560,8 +575,9 @@ def run(job, timeout, memory, sandboxed=None):
         folder = pathlib.Path(folder)
         paths = {name: folder / name for name in ("job", "log", "results", "facts", "specs")}
         paths["job"].write_text(json.dumps(_specs_apart(job, paths["specs"])))
-        paths["log"].touch()
-        paths["results"].touch()
+        for name in ("job", "log", "results"):  # opened by root for the harness: no one else reads them
+            paths[name].touch()
+            paths[name].chmod(0o600)
         cgroup = Cgroup(memory, kind, base)
         try:
             request = {**{name: str(path) for name, path in paths.items()}, "memory": memory, "script": None,
@@ -578,7 +594,7 @@ def run(job, timeout, memory, sandboxed=None):
                     os.mkdir(path)
                     if uid is not None:
                         os.chown(path, uid, uid)
-                os.chmod(folder, 0o755)
+                os.chmod(folder, 0o711)  # its own folders are reached, not listed
             request["env"] = {"PATH": "/usr/local/bin:/usr/bin:/bin", "HOME": home, "TMPDIR": tmp, "LANG": "C.UTF-8",
                               "MPLBACKEND": "Agg", "MPLCONFIGDIR": f"{tmp}/matplotlib", "IPYTHONDIR": f"{tmp}/ipython",
                               "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
@@ -593,7 +609,11 @@ def run(job, timeout, memory, sandboxed=None):
             ended.set()
             watchdog.cancel()
             seconds = time.monotonic() - start
-            oom = cgroup.oom_kills() + json.loads(_read(paths["facts"]) or "{}").get("oom_kills", 0)
+            try:  # written by the face, as root (a submission run without root could write it too)
+                counted = json.loads(_read(paths["facts"]) or "{}").get("oom_kills", 0)
+            except (ValueError, AttributeError):
+                counted = 0
+            oom = cgroup.oom_kills() + (counted if isinstance(counted, int) else 0)
         finally:
             cgroup.remove()
         reports = []

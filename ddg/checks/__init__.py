@@ -67,7 +67,9 @@ def _public():
 def public(name, seed=None):
     """One set of the public input of the check of ``name``: ``judge.Call`` objects with their expected
     values; ``seed`` picks the set (a random one when ``None``)."""
-    sets = _public()[name]
+    sets = _public().get(name)
+    if not sets:
+        raise CheckError(f"the public input of the checks has nothing for {name}: run python -m instructor.references")
     chosen = sets[int(np.random.default_rng(seed).integers(len(sets))) if seed is None else seed % len(sets)]
     return [Call(tuple(c["args"]), c["what"], np.asarray(c["want"], dtype=float),
                  {k: np.asarray(v, dtype=float) for k, v in c.get("given", {}).items()}) for c in chosen]

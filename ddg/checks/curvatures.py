@@ -161,6 +161,7 @@ class LengthGradient(Exercise):
     name = "length_gradient"
     expects = "a gradient vector (x, y) at every vertex of the closed curve, v_0 and v_(n-1) included"
     forbidden = ("length_gradient", "curvature", "laplacian")
+    measures = ("ddg.flow.semi_implicit_step",)  # (v - step) / dt tends to the gradient of length
 
     def draw(self, rng):
         calls = [Call((g.array([[0, 0], [0, 1], [1, 1], [1, 0]], integer=True),), "a clockwise square"),

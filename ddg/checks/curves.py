@@ -103,6 +103,7 @@ class VertexNormals(Exercise):
     name = "vertex_normals"
     expects = "a unit normal (x, y) at every vertex of the closed curve, v_0 and v_(n-1) included"
     forbidden = ("bisector_normals", "length_gradient", "curvature")
+    measures = ("ddg.flow.semi_implicit_step",)  # (v - step) / dt tends to the gradient of length
 
     def draw(self, rng):
         convex, other = g.random_polygon(rng, convex=True), g.unequal_polygon(rng, max_turn=np.pi - 0.3)

@@ -7,15 +7,16 @@ other (the grader serves them one at a time, :class:`Feed`), builds it, and only
 checks' code and calls the answer. Inside it:
 
 * the ``ddg`` quantities the exercise asks for are switched off (they raise ``WriteItYourself``),
-  as is anything the check uses to measure (``measures``: shapely's ``buffer``, say);
-* the check's own code is gone: the modules that draw input, hold expectations or judge are
-  emptied and cannot be imported or reloaded again, and ``importlib.reload`` refuses, so neither
-  a reference measurement nor the frames of the caller lead back to an answer;
+  as is anything the check uses to measure (``measures``: shapely's ``buffer``, say), both where
+  they are implemented (every reference to the original is replaced, so ``gc`` finds none);
+* the check's own code is gone: the modules that draw input, hold the public results or judge are
+  emptied and cannot be imported or reloaded again, and ``importlib.reload`` refuses;
 * the answer has at most :data:`MEMORY_LIMIT` bytes more than the caller, at most
   :data:`PROCESS_LIMIT` processes (where the operating system enforces it for the user), and
-  everything it starts is stopped with it: on Linux as root it runs as process 1 of a new PID
-  namespace, which the kernel ends as a whole; elsewhere a warden process, made the subreaper of
-  everything the answer starts (even after ``setsid``), stops them all.
+  everything it starts is stopped: on Linux as root the inputs' processes run below process 1 of a
+  new PID namespace, which stops what each input's process left before the next one starts, and
+  the kernel ends the namespace as a whole; elsewhere a warden process, made the subreaper of
+  everything the answer starts (even after ``setsid``), stops them all at the end.
 
 Where ``fork`` is missing (Windows) the answer runs in a thread of this process: the time limit
 still gives a verdict, but nothing above is in place. None of this stops an answer that copies
@@ -24,6 +25,7 @@ still gives a verdict, but nothing above is in place. None of this stops an answ
 
 import contextlib
 import ctypes
+import gc
 import importlib
 import io
 import json
@@ -199,10 +201,14 @@ def switch_off(forbidden, measures):
 
         def refuse(*args, _why=why, **kwargs):
             raise WriteItYourself(_why)
+        refuse.switched_off = True
+        original = getattr(module, attribute, None)
         setattr(module, attribute, refuse)
         for cls in vars(module).values():  # shapely.Polygon.buffer and the like
             if isinstance(cls, type) and attribute in vars(cls):
                 setattr(cls, attribute, refuse)
+        if original is not None and not getattr(original, "switched_off", False):  # once per process tree
+            _replace_everywhere(original, refuse)
     if roots - {"ddg"}:
         _imp = importlib.import_module("_imp")
         create = _imp.create_dynamic
@@ -213,6 +219,17 @@ def switch_off(forbidden, measures):
                 raise ImportError(f"{spec.name} cannot be loaded again while a check runs")
             return create(spec, *args)
         _imp.create_dynamic = no_second_copy
+
+
+def _replace_everywhere(original, replacement):
+    """Put ``replacement`` wherever a dict or a list holds ``original`` (the copy of a compiled module's
+    namespace that Python keeps to initialise it again among them), so that nothing leads back to it."""
+    for holder in gc.get_referrers(original):
+        if isinstance(holder, dict):
+            for key in [k for k, v in holder.items() if v is original]:
+                holder[key] = replacement
+        elif isinstance(holder, list):
+            holder[:] = [replacement if v is original else v for v in holder]
 
 
 def _drop_checks():
@@ -379,15 +396,17 @@ def _each_apart(answer, calls, forbidden, measures, build):
     return results
 
 
-def _read_until_ended(fd, pid):
-    """What ``pid`` wrote to ``fd`` until it ended (a process it started may hold the pipe open longer)."""
-    chunks, ended = [], False
+def _read_until_ended(fd, pid, limit=64 << 20):
+    """What ``pid`` wrote to ``fd`` until it ended (a process it started may hold the pipe open longer), up
+    to ``limit`` bytes (more is no result: the judge says so)."""
+    chunks, ended, size = [], False, 0
     os.set_blocking(fd, False)
     while True:
         if select.select([fd], [], [], 0.02)[0]:
             with contextlib.suppress(BlockingIOError):
                 chunk = os.read(fd, 1 << 16)
-                if not chunk:
+                size += len(chunk)
+                if not chunk or size > limit:
                     break
                 chunks.append(chunk)
                 continue

@@ -5,7 +5,8 @@
   code, so a lookup table made from a leaked run passes nothing, for that student or another, while
   the same notebook graded again gets the same inputs and grade.
 * Shortcuts: ``ddg``'s own helper of the asked-for quantity, ``ddg/curve.py`` run again, shapely's
-  buffer by every door, a second copy of its compiled module, the grader's answer key: no points.
+  buffer by every door (its compiled function found by ``gc``, a second copy of its module), the
+  grader's answer key: no points.
 * The leak guard of ``make student``: answers planted in a hidden cell, in ``ddg/checks`` and in a
   script of the site are named; the edition ``make test`` builds passes it (``make student`` runs it).
 """
@@ -165,6 +166,18 @@ AREAS = {
                             "False))\n",
     "Polygon.buffer": "import shapely\n\n\ndef minkowski_area(curve, eps):\n"
                       "    return shapely.Polygon(curve.vertices).buffer(eps, quad_segs=1024).area\n",
+    "the original, found by gc": "import gc\nimport shapely\n\n\ndef minkowski_area(curve, eps):\n"
+                                 "    found = [d['buffer'] for d in gc.get_objects() if isinstance(d, dict)\n"
+                                 "             and type(d.get('buffer')).__name__ == 'ufunc']\n"
+                                 "    return shapely.area(found[0](shapely.Polygon(curve.vertices), eps, 1024, 0, 0, "
+                                 "5.0, False))\n",
+    "the import guard's own loader": "import _imp\nimport importlib.util\nimport shapely\n\n\n"
+                                     "def minkowski_area(curve, eps):\n"
+                                     "    load = [c.cell_contents for c in _imp.create_dynamic.__closure__\n"
+                                     "            if callable(c.cell_contents)][0]\n"
+                                     "    lib = load(importlib.util.find_spec('shapely.lib'))\n"
+                                     "    return shapely.area(lib.buffer(shapely.Polygon(curve.vertices), eps, 1024, 0, 0, "
+                                     "5.0, False))\n",
 }
 
 
@@ -190,7 +203,8 @@ def test_every_shortcut_gets_no_points_from_the_grader_or_the_check(tmp_path):
         assert grades[f"turns{i}"]["ex-turning-angles"] == "0", (what, feedback(out, f"turns{i}"))
     for i, what in enumerate(AREAS):
         assert grades[f"areas{i}"]["ex-minkowski-nonconvex"] == "0", (what, feedback(out, f"areas{i}", MINKOWSKI))
-        assert "shapely" in feedback(out, f"areas{i}", MINKOWSKI), what
+        said = feedback(out, f"areas{i}", MINKOWSKI)  # refused by name, or (gc) the original is nowhere
+        assert "shapely" in said or "IndexError: list index out of range" in said, (what, said)
     assert float(grades["honest"]["ex-turning-angles"]) > 0
     assert grades["gradient"]["ex-length-gradient"] == "0", feedback(out, "gradient", GRADIENT[0])
     assert "No such file" in feedback(out, "gradient", GRADIENT[0])
