@@ -202,7 +202,12 @@ class MinkowskiArea(Exercise):
     name = "minkowski_area"
     expects = "the area of the Minkowski sum, a single number"
     forbidden = ("inflated_area", "inflate")
-    measures = ("shapely.buffer", "shapely.lib.buffer", "shapely.lib.offset_curve")
+    # shapely's buffer, and every set operation of its compiled core that could measure the same region
+    # (a union of the polygon, edge rectangles and disks, its area by inclusion-exclusion, a fill made valid)
+    measures = ("shapely.buffer", *(f"shapely.lib.{name}{form}" for name in (
+        "buffer", "offset_curve", "union", "unary_union", "coverage_union", "disjoint_subset_union", "intersection",
+        "intersection_all", "difference", "symmetric_difference", "symmetric_difference_all", "make_valid_with_params",
+        "polygonize", "polygonize_full", "node") for form in ("", "_scalar", "_prec", "_prec_scalar")))
     tolerance = 1e-6
 
     def draw(self, rng):

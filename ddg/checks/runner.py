@@ -186,7 +186,7 @@ def switch_off(forbidden, measures):
             raise WriteItYourself(f"it uses ddg's `{_name}`, which this exercise asks you to write yourself")
         for attribute in (name, *private.get(name, ())):
             setattr(DiscreteCurve, attribute, property(refuse))
-    roots = set()  # the packages of what is switched off
+    roots, replaced = set(), {}  # the packages of what is switched off; id(original) -> (original, refusal)
     for dotted in measures:
         module_name, _, attribute = dotted.rpartition(".")
         try:
@@ -208,7 +208,8 @@ def switch_off(forbidden, measures):
             if isinstance(cls, type) and attribute in vars(cls):
                 setattr(cls, attribute, refuse)
         if original is not None and not getattr(original, "switched_off", False):  # once per process tree
-            _replace_everywhere(original, refuse)
+            replaced[id(original)] = (original, refuse)
+    _replace_everywhere(replaced)
     if roots - {"ddg"}:
         _imp = importlib.import_module("_imp")
         create = _imp.create_dynamic
@@ -221,15 +222,22 @@ def switch_off(forbidden, measures):
         _imp.create_dynamic = no_second_copy
 
 
-def _replace_everywhere(original, replacement):
-    """Put ``replacement`` wherever a dict or a list holds ``original`` (the copy of a compiled module's
-    namespace that Python keeps to initialise it again among them), so that nothing leads back to it."""
-    for holder in gc.get_referrers(original):
+def _replace_everywhere(replaced):
+    """Wherever a dict or a list holds an original of ``replaced`` (``{id: (original, refusal)}``), put its
+    refusal instead (the copy of a compiled module's namespace that Python keeps to initialise it again
+    among them), so that nothing leads back to it; one pass over the objects for all of them."""
+    if not replaced:
+        return
+    def swap(v):
+        entry = replaced.get(id(v))
+        return entry[1] if entry is not None and entry[0] is v else v
+    for holder in gc.get_referrers(*(original for original, _ in replaced.values())):
         if isinstance(holder, dict):
-            for key in [k for k, v in holder.items() if v is original]:
-                holder[key] = replacement
+            for key, value in list(holder.items()):
+                if swap(value) is not value:
+                    holder[key] = swap(value)
         elif isinstance(holder, list):
-            holder[:] = [replacement if v is original else v for v in holder]
+            holder[:] = [swap(v) for v in holder]
 
 
 def _drop_checks():

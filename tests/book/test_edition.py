@@ -125,7 +125,7 @@ def test_no_answer_key_leaves_the_instructor(tmp_path):
     assert json.loads((out / "ddg" / "checks" / "public.json").read_text()) == references.public_sets()
     book = [c for path in NOTEBOOKS for c in json.loads(path.read_text())["cells"]]
     tags = [t for c in book for t in c["metadata"].get("tags", [])]
-    assert tags.count("answer-key") == 4 and tags.count("answer-stub") == 1  # what the edition drops or stubs
+    assert tags.count("answer-key") == 7 and tags.count("answer-stub") == 1  # what the edition drops or stubs
 
 
 def test_the_public_input_is_current():

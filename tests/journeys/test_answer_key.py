@@ -6,7 +6,7 @@
   the same notebook graded again gets the same inputs and grade.
 * Shortcuts: ``ddg``'s own helper of the asked-for quantity, ``ddg/curve.py`` run again, shapely's
   buffer by every door (its compiled function found by ``gc``, a second copy of its module), the
-  grader's answer key: no points.
+  same region as a union of pieces, the grader's answer key: no points.
 * The leak guard of ``make student``: answers planted in a hidden cell, in ``ddg/checks`` and in a
   script of the site are named; the edition ``make test`` builds passes it (``make student`` runs it).
 """
@@ -164,6 +164,13 @@ AREAS = {
                             "    lib = importlib.util.module_from_spec(spec)\n    spec.loader.exec_module(lib)\n"
                             "    return shapely.area(lib.buffer(shapely.Polygon(curve.vertices), eps, 1024, 0, 0, 5.0, "
                             "False))\n",
+    "a union of the pieces": "import numpy as np\nimport shapely\n\n\ndef minkowski_area(curve, eps):\n"
+                             "    v, t = curve.vertices, np.linspace(0, 2 * np.pi, 4096, endpoint=False)\n"
+                             "    disks = [shapely.Polygon(p + eps * np.c_[np.cos(t), np.sin(t)]) for p in v]\n"
+                             "    strips = [shapely.Polygon(np.r_[[a, b], [b, a] + eps * np.array([[b - a] * 2])[0]"
+                             " @ [[0, -1], [1, 0]] / np.linalg.norm(b - a)])\n"
+                             "              for a, b in zip(v, np.roll(v, -1, axis=0))]\n"
+                             "    return shapely.union_all([shapely.Polygon(v), *disks, *strips]).area\n",
     "Polygon.buffer": "import shapely\n\n\ndef minkowski_area(curve, eps):\n"
                       "    return shapely.Polygon(curve.vertices).buffer(eps, quad_segs=1024).area\n",
     "the original, found by gc": "import gc\nimport shapely\n\n\ndef minkowski_area(curve, eps):\n"
@@ -233,7 +240,7 @@ def planted_edition(tmp_path):
     shutil.copy(ROOT / "book" / "_assets" / "ddg-lab-circle.js", edition / "html" / "_static")  # the book's, planted
     nb = nbformat.read(student / "book" / "06_table.ipynb", as_version=4)
     source = next("".join(c["source"]) for c in json.loads((ROOT / "book" / "06_table.ipynb").read_text())["cells"]
-                  if "answer-key" in c["metadata"].get("tags", []))
+                  if "def circle_k" in "".join(c["source"]))
     hidden = nbformat.v4.new_code_cell(source[source.index("def circle_k"):source.index("four = ")])
     hidden.metadata = {"tags": ["remove-cell"], "jupyter": {"source_hidden": True}}
     nb.cells = [c for c in nb.cells if c.cell_type == "markdown"][:1] + [
