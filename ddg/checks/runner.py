@@ -162,12 +162,6 @@ def well_formed(results):
 # ------------------------------------------------------------------ the answer's process
 
 
-def _seal(forbidden, measures):
-    """In the answer's process: switch off what the answer must not use, and drop the checks."""
-    switch_off(forbidden, measures)
-    _drop_checks()
-
-
 def switch_off(forbidden, measures):
     """Make the ``DiscreteCurve`` quantities ``forbidden`` and the callables ``measures`` raise
     :class:`WriteItYourself` in this process (the grader does this before a submission's cells run).
@@ -344,7 +338,8 @@ def _warden(answer, calls, forbidden, measures, build, results_fd, control_fd):
             os.close(control_fd)
             sys.stdout = sys.stderr = io.StringIO()  # the kernel's streams belong to the caller
             _limits()
-            data = json.dumps(_each_apart(answer, calls, forbidden, measures, build)).encode()
+            switch_off(forbidden, measures)  # once, for every input's process below
+            data = json.dumps(_each_apart(answer, calls, build)).encode()
             view = memoryview(data)
             while view:
                 view = view[os.write(results_fd, view):]
@@ -366,9 +361,10 @@ def _warden(answer, calls, forbidden, measures, build, results_fd, control_fd):
     stop()
 
 
-def _each_apart(answer, calls, forbidden, measures, build):
-    """Each input in a process of its own, which fetches that input (and no other), builds it, seals
-    the checks away and calls the answer; its result comes back through a pipe."""
+def _each_apart(answer, calls, build):
+    """Each input in a process of its own, which fetches that input (and no other), builds it, drops
+    the checks and calls the answer; its result comes back through a pipe. (What the exercise asks
+    for is already switched off, in the process that forks them.)"""
     results = []
     for i in range(len(calls)):
         read, write = os.pipe()
@@ -379,7 +375,7 @@ def _each_apart(answer, calls, forbidden, measures, build):
                 spec = calls[i] if isinstance(calls, list) else calls.fetch(i)
                 args = [build(a) for a in spec]  # before the builders are sealed away
                 del calls, spec
-                _seal(forbidden, measures)
+                _drop_checks()
                 data = json.dumps(answer_one(answer, args)).encode()
                 view = memoryview(data)
                 while view:
