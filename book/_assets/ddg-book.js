@@ -1,5 +1,23 @@
 /* Small behaviours of the book's pages. */
 document.addEventListener("DOMContentLoaded", function () {
+  // The phone's menu button opens the chapter list: the theme (pydata-sphinx-theme 0.17, its issue
+  // #2451) binds only the first .primary-toggle, a hidden one; the others do here what it does there.
+  var sidebar = document.getElementById("pst-primary-sidebar"), modal = document.getElementById("pst-primary-sidebar-modal");
+  var bound = document.querySelector(".primary-toggle");
+  if (sidebar && modal && modal.showModal) {
+    document.querySelectorAll(".primary-toggle").forEach(function (button) {
+      if (button === bound) { return; }
+      button.addEventListener("click", function (event) {
+        event.preventDefault();
+        event.stopPropagation();
+        var back = document.activeElement;
+        Array.from(sidebar.childNodes).forEach(function (node) { modal.appendChild(node); });
+        Array.from(sidebar.classList).forEach(function (name) { sidebar.classList.remove(name); modal.classList.add(name); });
+        modal.showModal();  // the theme's own handlers close it and put the list back
+        modal.addEventListener("close", function () { if (back && back.focus) { back.focus(); } }, {once: true});
+      });
+    });
+  }
   // A solution's title opens the solution: its link to the exercise would jump away instead.
   document.querySelectorAll(".solution > .admonition-title a").forEach(function (link) {
     link.addEventListener("click", function (event) {

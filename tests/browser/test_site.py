@@ -282,6 +282,24 @@ def test_a_reader_searches_from_a_chapter(servers, browser, site):
         visit.close()
 
 
+@pytest.mark.parametrize("site", list(SITES))
+def test_a_phone_reader_opens_the_chapter_list_by_tapping_the_menu(servers, browser, site):
+    """On a phone the ☰ button opens the list of chapters (the theme alone binds a hidden twin of it),
+    and a tap on a chapter there opens that chapter."""
+    visit = Visit(browser, servers[site], "book/04_gradient_of_length.html", view="phone", touch=True)
+    page = visit.page
+    try:
+        page.locator(".primary-toggle:visible").first.tap()
+        page.wait_for_selector("#pst-primary-sidebar-modal[open]", timeout=5000)
+        link = page.locator("#pst-primary-sidebar-modal a[href$='03_winding_number.html']").first
+        assert link.is_visible()
+        link.tap()
+        page.wait_for_url("**/03_winding_number.html")
+        assert not visit.outside and not visit.failed
+    finally:
+        visit.close()
+
+
 def test_both_sites_were_found():
     for site in SITES:
         found = pages(site)
