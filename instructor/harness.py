@@ -17,7 +17,7 @@ submission's code ever holds another input than its own; nothing here judges: th
 For each exercise, in a child process of its own:
 
 1. the ``ddg`` quantity the exercise asks for is switched off *before* any cell of the submission
-   runs (``runner.switch_off``), so no cell can keep a copy of it for later;
+   runs (``ddg.checks.seal.switch_off``), so no cell can keep a copy of it for later;
 2. only the cells the answer needs run (:func:`plan`: the last cell that defines the answer, then,
    recursively, for each name a chosen cell uses, the cell that defines it), one by one, in
    IPython (magics work), each with a time limit: a loop elsewhere in the notebook costs nothing;
@@ -217,7 +217,7 @@ class _NoGrader:
 def _child(shell, cells, order, exercise, limits, channel, feed):
     """In the exercise's process: switch off, run the cells, run the answer; report on ``channel``; each
     input arrives on ``feed``, asked for by the process that answers it."""
-    from ddg.checks import answer_results, runner
+    from ddg.checks import answer_results, runner, seal
     from ddg.checks import EXERCISES
 
     def send(message):
@@ -245,7 +245,7 @@ def _child(shell, cells, order, exercise, limits, channel, feed):
     except OSError:
         pass
     checked = EXERCISES[exercise["name"]]
-    runner.switch_off(checked.forbidden, checked.measures)
+    seal.switch_off(checked.forbidden, checked.measures)
     for name in [m for m in sys.modules if m == "instructor" or m.startswith("instructor.")]:
         sys.modules[name] = None
     sys.meta_path.insert(0, _NoGrader())

@@ -25,8 +25,6 @@ still gives a verdict, but nothing above is in place. None of this stops an answ
 
 import contextlib
 import ctypes
-import gc
-import importlib
 import io
 import json
 import os
@@ -39,6 +37,8 @@ import time
 
 import numpy as np
 
+from .seal import WriteItYourself, drop_checks, switch_off  # noqa: F401 (WriteItYourself: part of the runner's API)
+
 TIME_LIMIT = 10.0
 """Seconds an answer may run, for all the input of one check together."""
 
@@ -47,14 +47,6 @@ MEMORY_LIMIT = 2 << 30
 
 PROCESS_LIMIT = 64
 """Processes an answer may start (counted, as the operating system does, per user)."""
-
-SEALED = ("ddg.checks", "ddg.explore")
-"""Modules the answer's process loses: the checks' drawing, measuring and judging code."""
-
-
-class WriteItYourself(Exception):
-    """Raised when an answer uses the quantity its exercise asks for."""
-
 
 class Feed:
     """Input served one at a time: ``count`` inputs, ``fetch(i)`` the argument specs of the ``i``-th, called
@@ -162,112 +154,6 @@ def well_formed(results):
 # ------------------------------------------------------------------ the answer's process
 
 
-def switch_off(forbidden, measures):
-    """Make the ``DiscreteCurve`` quantities ``forbidden`` and the callables ``measures`` raise
-    :class:`WriteItYourself` in this process (the grader does this before a submission's cells run).
-
-    ``measures`` names callables by ``"module.attribute"``: where a quantity is implemented (``ddg``'s
-    own helpers, so that a copy of ``DiscreteCurve`` made by running its source again is switched off
-    too) and what measures it (shapely's buffer, down to its compiled ``shapely.lib.buffer``, which
-    every other entry point calls). Their modules are imported first where they are not yet, and
-    cannot be loaded again afterwards (``ddg``'s modules by the checks' seal, compiled extensions here).
-    """
-    from ..curve import DiscreteCurve
-
-    private = {"turning_angles": ("_tan_half_psi",), "curvature": ("_curvatures",)}
-    for name in forbidden:
-        def refuse(*args, _name=name, **kwargs):
-            raise WriteItYourself(f"it uses ddg's `{_name}`, which this exercise asks you to write yourself")
-        for attribute in (name, *private.get(name, ())):
-            setattr(DiscreteCurve, attribute, property(refuse))
-    roots, replaced = set(), {}  # the packages of what is switched off; id(original) -> (original, refusal)
-    for dotted in measures:
-        module_name, _, attribute = dotted.rpartition(".")
-        try:
-            module = importlib.import_module(module_name)
-        except ImportError:  # nothing to switch off: the answer cannot use it either
-            continue
-        roots.add(module_name.split(".")[0])
-        if module_name.startswith("ddg."):
-            why = f"it uses `{dotted}`, ddg's own computation of what this exercise asks you to write yourself"
-        else:
-            why = f"it uses `{dotted}`, which measures what this exercise asks you to compute"
-
-        def refuse(*args, _why=why, **kwargs):
-            raise WriteItYourself(_why)
-        refuse.switched_off = True
-        original = getattr(module, attribute, None)
-        setattr(module, attribute, refuse)
-        for cls in vars(module).values():  # shapely.Polygon.buffer and the like
-            if isinstance(cls, type) and attribute in vars(cls):
-                setattr(cls, attribute, refuse)
-        if original is not None and not getattr(original, "switched_off", False):  # once per process tree
-            replaced[id(original)] = (original, refuse)
-    _replace_everywhere(replaced)
-    if roots - {"ddg"}:
-        _imp = importlib.import_module("_imp")
-        create = _imp.create_dynamic
-
-        def no_second_copy(spec, *args):  # a compiled module loaded again would bring its functions back
-            loaded = {getattr(m, "__file__", None) for m in list(sys.modules.values())}
-            if spec.name in sys.modules or getattr(spec, "origin", None) in loaded:
-                raise ImportError(f"{spec.name} cannot be loaded again while a check runs")
-            return create(spec, *args)
-        _imp.create_dynamic = no_second_copy
-
-
-def _replace_everywhere(replaced):
-    """Wherever a dict or a list holds an original of ``replaced`` (``{id: (original, refusal)}``), put its
-    refusal instead (the copy of a compiled module's namespace that Python keeps to initialise it again
-    among them), so that nothing leads back to it; one pass over the objects for all of them."""
-    if not replaced:
-        return
-    def swap(v):
-        entry = replaced.get(id(v))
-        return entry[1] if entry is not None and entry[0] is v else v
-    for holder in gc.get_referrers(*(original for original, _ in replaced.values())):
-        if isinstance(holder, dict):
-            for key, value in list(holder.items()):
-                if swap(value) is not value:
-                    holder[key] = swap(value)
-        elif isinstance(holder, list):
-            holder[:] = [swap(v) for v in holder]
-
-
-def _drop_checks():
-    """Empty the checks' modules, make them unimportable, and refuse any new import of ``ddg``."""
-    for name in [m for m in sys.modules if m.startswith(SEALED) and m != __name__]:
-        module = sys.modules[name]
-        for value in list(vars(module).values()):  # the exercises' methods, wherever they are kept
-            if isinstance(value, type) and value.__module__.startswith(SEALED):
-                for attribute in [a for a in vars(value) if not a.startswith("__")]:
-                    with contextlib.suppress(AttributeError, TypeError):
-                        delattr(value, attribute)
-        vars(module).clear()
-        sys.modules[name] = None  # `import` raises ImportError
-    package = sys.modules.get("ddg")
-    for name in ("checks", "explore"):
-        with contextlib.suppress(AttributeError):
-            delattr(package, name)
-    sys.meta_path.insert(0, _NoNew(("ddg",)))
-
-    def no_reload(module):
-        raise ImportError("reloading a module is switched off while a check runs")
-    importlib.reload = no_reload
-
-
-class _NoNew:
-    """An import hook that refuses to load any part of the packages ``roots`` anew (what is loaded stays)."""
-
-    def __init__(self, roots):
-        self.roots = roots
-
-    def find_spec(self, name, path=None, target=None):
-        if name.split(".")[0] in self.roots:
-            raise ImportError(f"{name} cannot be imported afresh while a check runs")
-        return None
-
-
 def _limits():
     """Limits on the answer's memory, processes and core files."""
     with contextlib.suppress(OSError, ValueError):
@@ -339,10 +225,7 @@ def _warden(answer, calls, forbidden, measures, build, results_fd, control_fd):
             sys.stdout = sys.stderr = io.StringIO()  # the kernel's streams belong to the caller
             _limits()
             switch_off(forbidden, measures)  # once, for every input's process below
-            data = json.dumps(_each_apart(answer, calls, build)).encode()
-            view = memoryview(data)
-            while view:
-                view = view[os.write(results_fd, view):]
+            _write_all(results_fd, json.dumps(_each_apart(answer, calls, build)).encode())
         finally:
             os._exit(0)
     os.close(results_fd)
@@ -375,11 +258,8 @@ def _each_apart(answer, calls, build):
                 spec = calls[i] if isinstance(calls, list) else calls.fetch(i)
                 args = [build(a) for a in spec]  # before the builders are sealed away
                 del calls, spec
-                _drop_checks()
-                data = json.dumps(answer_one(answer, args)).encode()
-                view = memoryview(data)
-                while view:
-                    view = view[os.write(write, view):]
+                drop_checks()
+                _write_all(write, json.dumps(answer_one(answer, args)).encode())
             finally:
                 os._exit(0)
         os.close(write)
@@ -398,6 +278,12 @@ def _each_apart(answer, calls, build):
         if "missing" in result:
             break
     return results
+
+
+def _write_all(fd, data):
+    view = memoryview(data)
+    while view:
+        view = view[os.write(fd, view):]
 
 
 def _read_until_ended(fd, pid, limit=64 << 20):
