@@ -2,8 +2,8 @@
 #   make book   build the course companion into _build/html
 #   make test   run every test (unit tests, notebooks, the strict build, browser, user journeys)
 # and: make lab (JupyterLab on book/), make bench, make student, make pdf, make dist,
-# make repo URL=..., make screenshots, make clean. Each creates .venv from the exact pins when it
-# is missing or the pins changed (tools/env.py). The recipes call small Python scripts in tools/,
+# make repo URL=..., make publish, make publish-student STUDENT_REPO=..., make screenshots,
+# make clean. Each creates .venv from the exact pins when it is missing or the pins changed (tools/env.py). The recipes call small Python scripts in tools/,
 # which say what they do; CONTRIBUTING.md says how the pieces fit.
 PYTHON ?= python3
 VENV   := .venv
@@ -15,7 +15,7 @@ KERNEL := $(VENV)/etc/ipython/ipython_kernel_config.py
 # The notebooks import the ddg of this checkout, whatever the environment holds.
 export PYTHONPATH := $(CURDIR)
 
-.PHONY: book book-strict test pytest lab bench student pdf dist repo screenshots clean
+.PHONY: book book-strict test pytest lab bench student pdf dist repo publish publish-student screenshots clean
 
 # The environment from requirements.txt and requirements-build.txt (tools/env.py).
 $(ENV): requirements.txt requirements-build.txt pyproject.toml tools/env.py
@@ -97,6 +97,21 @@ dist: $(ENV)
 repo: $(ENV)
 	@[ -n "$(URL)" ] || { echo "usage: make repo URL=https://github.com/owner/name" >&2; exit 1; }
 	$(PY) tools/repo.py "$(URL)"
+
+# The book online: built with its PDFs, then _build/html onto the gh-pages branch of REMOTE (default
+# origin; a remote's name, a URL or a path), with .nojekyll (tools/publish.py, by ghp-import).
+publish: $(ENV) $(VENDOR) $(KERNEL)
+	@$(MAKE) --no-print-directory book
+	@$(MAKE) --no-print-directory pdf
+	@$(PY) tools/publish.py book $(if $(REMOTE),--remote $(REMOTE))
+
+# The student edition online: built for STUDENT_REPO (its launch buttons and set-up cells lead
+# there), its files pushed to that repository's main branch and its site to its gh-pages branch.
+# STUDENT_REMOTE: where to push instead of STUDENT_REPO itself (an ssh URL, a path).
+publish-student: $(ENV) $(VENDOR) $(KERNEL)
+	@[ -n "$(STUDENT_REPO)" ] || { echo "usage: make publish-student STUDENT_REPO=https://github.com/owner/name" >&2; exit 1; }
+	@$(MAKE) --no-print-directory student STUDENT_REPO=$(STUDENT_REPO)
+	@$(PY) tools/publish.py student --repo $(STUDENT_REPO) $(if $(STUDENT_REMOTE),--remote $(STUDENT_REMOTE))
 
 # Everything built; the student edition too, unless a notebook there was changed since `make
 # student` wrote it (a student's answers): then it refuses, unless FORCE=1.

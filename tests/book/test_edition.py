@@ -7,6 +7,7 @@ import pathlib
 import nbformat
 import numpy as np
 import pytest
+import yaml
 
 from ddg import checks
 from instructor import edition
@@ -50,10 +51,17 @@ def test_student_repository_and_launch_buttons(tmp_path):
     first = json.loads((out / "book" / "01_smooth_curves.ipynb").read_text())["cells"]
     setup = "".join(next(c for c in first if c["cell_type"] == "code")["source"])
     assert 'REPOSITORY = "https://github.com/someone/course-students"' in setup
+    homework = yaml.safe_load(config)["parse"]["myst_substitutions"]["homework"]
+    assert "Binder or Colab" in homework and "run the check cell" in homework and "olded" not in homework
     out = edition.write_edition(ROOT, tmp_path / "without")
     config = (out / "_config.yml").read_text()
     assert "binderhub_url: ''" in config and "colab_url: ''" in config and "use_repository_button: false" in config
     assert "rocket" not in config.split("launch:")[1].split("\n")[0]  # the intro promises no launch button
+    homework = yaml.safe_load(config)["parse"]["myst_substitutions"]["homework"]
+    assert "rocket" not in homework and "download" in homework and "run the check cell" in homework
+    # _config.yml is edited as YAML: every comment of the course's stays in the edition's
+    comments = lambda text: [line.split("#", 1)[1] for line in text.splitlines() if " # " in line or line.startswith("#")]  # noqa: E731
+    assert set(comments((ROOT / "_config.yml").read_text())) <= set(comments(config))
     for name in ("ddg/checks/__init__.py", "pyproject.toml", "requirements.txt", "README.md", "_vendor", "book/_assets"):
         assert (out / name).exists(), name
 

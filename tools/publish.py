@@ -1,0 +1,148 @@
+"""Put the book, or the student edition, online: `make publish`, `make publish-student`.
+
+    python tools/publish.py book [--remote REMOTE]
+        _build/html onto the gh-pages branch of REMOTE (default: origin; a remote's name, a URL or a
+        path), with a .nojekyll file, by ghp-import. GitHub Pages then serves it (Settings, Pages,
+        Deploy from a branch: gh-pages) at https://OWNER.github.io/NAME/.
+
+    python tools/publish.py student --repo URL [--remote REMOTE]
+        The student edition of `make student` (_build/student) into the student repository: its
+        files (not html/ or _build/) as a new commit on main, and its site (_build/student/html) onto
+        gh-pages. REMOTE is where to push (default: URL; with STUDENT_REPO_TOKEN in the environment,
+        the GitHub URL with that token). Files of the student repository that no edition wrote (a
+        note the course team added there) are kept; files an earlier edition wrote and this one does
+        not are deleted.
+
+Both refresh the site's service worker first (tools/sphinx_offline.py), so that readers who saved
+the book offline get this build on their next visit.
+"""
+
+import argparse
+import os
+import pathlib
+import shutil
+import subprocess
+import sys
+import tempfile
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+from tools.sphinx_offline import write_service_worker  # noqa: E402
+
+GHP_IMPORT = pathlib.Path(sys.executable).parent / "ghp-import"
+WRITTEN = ".edition-files"  # in the student repository: what the last edition wrote there
+GIT_USER = ["-c", "user.name=ddg publish", "-c", "user.email=publish@localhost"]  # a fresh machine knows no one
+
+
+def git(*args, cwd, check=True, capture=False):
+    result = subprocess.run(["git", *args], cwd=cwd, text=True, capture_output=capture)
+    if check and result.returncode != 0:
+        sys.exit(f"error: git {' '.join(args)} failed{': ' + result.stderr.strip() if capture else ''}")
+    return result
+
+
+def site_onto_pages(site, remote, message):
+    """``site`` as a new commit on the gh-pages branch of ``remote`` (a URL or a path), after the
+    branch's last one, made in a scratch repository (the course repository's branches stay as they
+    are)."""
+    site = pathlib.Path(site)
+    if not (site / "index.html").exists():
+        sys.exit(f"error: {site} holds no built site (index.html); build it first")
+    version = write_service_worker(site)
+    with tempfile.TemporaryDirectory() as scratch:
+        git("init", "-q", cwd=scratch)
+        git("remote", "add", "target", remote, cwd=scratch)
+        git("fetch", "-q", "--depth=1", "target", "gh-pages:refs/remotes/target/gh-pages", cwd=scratch, check=False,
+            capture=True)  # none yet: the first publication
+        env = dict(os.environ, GIT_AUTHOR_NAME="ddg publish", GIT_AUTHOR_EMAIL="publish@localhost",
+                   GIT_COMMITTER_NAME="ddg publish", GIT_COMMITTER_EMAIL="publish@localhost")
+        command = [str(GHP_IMPORT), "--no-jekyll", "--push", "--force", "--remote", "target", "--branch", "gh-pages",
+                   "--message", f"{message} (build {version})", str(site.resolve())]
+        if subprocess.run(command, cwd=scratch, env=env).returncode != 0:
+            sys.exit(f"error: could not push {site} to the gh-pages branch of {safe(remote)}")
+    return version
+
+
+def url_of(remote):
+    """A remote's URL: ``remote`` itself, unless it names a remote of the course repository."""
+    named = git("remote", "get-url", remote, cwd=ROOT, check=False, capture=True)
+    if named.returncode == 0:
+        return named.stdout.strip()
+    if "/" in remote or ":" in remote:
+        return remote
+    sys.exit(f"error: the course repository has no remote {remote!r}; give REMOTE=URL (or a path)")
+
+
+def publish_book(remote):
+    version = site_onto_pages(ROOT / "_build" / "html", url_of(remote), "The book, published by make publish")
+    print(f"published: _build/html (build {version}) on the gh-pages branch of {safe(remote)}")
+
+
+def edition_files(edition):
+    """The student edition's files (relative paths), as its .gitignore keeps them: not html/, _build/."""
+    listed = git("ls-files", "--others", "--exclude-standard", "-z", cwd=edition, capture=True).stdout
+    return sorted(name for name in listed.split("\0") if name)
+
+
+def publish_student(repo, remote):
+    edition = ROOT / "_build" / "student"
+    if not (edition / "html" / "index.html").exists():
+        sys.exit("error: no student edition in _build/student; run `make student STUDENT_REPO=...` first")
+    with tempfile.TemporaryDirectory() as scratch:
+        work = pathlib.Path(scratch) / "student"
+        # the edition's files are listed by git as its .gitignore says (an empty repository of its own)
+        listing = pathlib.Path(scratch) / "listing"
+        shutil.copytree(edition, listing, ignore=shutil.ignore_patterns("html", "_build"))
+        git("init", "-q", cwd=listing)
+        files = edition_files(listing)
+        if git("clone", "-q", remote, str(work), cwd=scratch, check=False, capture=True).returncode != 0:
+            sys.exit(f"error: cannot clone {repo} (pushing to {safe(remote)}): does the repository exist, "
+                     "and may you write to it (STUDENT_REPO_TOKEN)?")
+        if not git("rev-parse", "-q", "--verify", "HEAD", cwd=work, check=False, capture=True).stdout:
+            git("checkout", "-q", "-b", "main", cwd=work)  # an empty repository: its first commit
+        before = (work / WRITTEN).read_text().split("\n") if (work / WRITTEN).exists() else []
+        for name in set(before) - set(files) - {""}:  # what the last edition wrote and this one does not
+            (work / name).unlink(missing_ok=True)
+        for name in files:
+            (work / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(listing / name, work / name)
+        (work / WRITTEN).write_text("\n".join(files) + "\n")
+        git("add", "-A", cwd=work)
+        if git("diff", "--cached", "--quiet", cwd=work, check=False).returncode:
+            git(*GIT_USER, "commit", "-q", "-m", "The student edition, published by make publish-student",
+                cwd=work)
+            branch = git("rev-parse", "--abbrev-ref", "HEAD", cwd=work, capture=True).stdout.strip()
+            git("push", "-q", "origin", f"HEAD:{branch}", cwd=work)
+            print(f"published: {len(files)} files of the student edition on {branch} of {repo}")
+        else:
+            print(f"the student repository {repo} already holds this edition")
+    version = site_onto_pages(edition / "html", remote, "The student site, published by make publish-student")
+    print(f"published: the student site (build {version}) on the gh-pages branch of {repo}")
+
+
+def safe(url):
+    """``url`` without a token in it, to print."""
+    token = os.environ.get("STUDENT_REPO_TOKEN")
+    return url.replace(token, "***") if token else url
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("what", choices=["book", "student"])
+    parser.add_argument("--remote", help="where to push: a remote's name, a URL or a path")
+    parser.add_argument("--repo", help="student: the student repository's URL (https://github.com/owner/name)")
+    args = parser.parse_args(argv)
+    if args.what == "book":
+        publish_book(args.remote or "origin")
+        return
+    if not args.repo:
+        parser.error("student: --repo URL is needed (make publish-student STUDENT_REPO=URL)")
+    remote = args.remote
+    token = os.environ.get("STUDENT_REPO_TOKEN")
+    if not remote and token and args.repo.startswith("https://github.com/"):
+        remote = f"https://x-access-token:{token}@github.com/{args.repo.removeprefix('https://github.com/')}.git"
+    publish_student(args.repo, remote or args.repo)
+
+
+if __name__ == "__main__":
+    main()
