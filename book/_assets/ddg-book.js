@@ -78,3 +78,11 @@ document.addEventListener("DOMContentLoaded", function () {
     if (event.target.closest(".admonition-title, .toggle-button")) { setTimeout(cue, 0); }
   });
 });
+
+// Offline after one visit: once the page has loaded (never before its first paint), the service
+// worker saves the whole book in the background (tools/sphinx_offline.py writes it, per build).
+window.addEventListener("load", function () {
+  if (!("serviceWorker" in navigator) || !/^https?:$/.test(location.protocol)) { return; }
+  var root = new URL(document.documentElement.getAttribute("data-content_root") || "./", location.href);
+  navigator.serviceWorker.register(new URL("sw.js", root).href).catch(function () {});
+});
