@@ -64,6 +64,7 @@ class Feedback:
     inputs: int = 0
     notes: list = field(default_factory=list)
     kind: str = "public"  # the inputs: "public" (shipped with the checks) or "hidden" (drawn by the grader)
+    todo: bool = False  # the answer is still the starter (it raises NotImplementedError): not passed, no error
 
     @property
     def passed(self):
@@ -75,11 +76,13 @@ class Feedback:
     def __repr__(self):
         name = printable(self.name)[:60]
         lines = [f"✓ {name} passed on {self.inputs} {self.kind} inputs" if self.passed else
+                 f"☐ {name}: to do, {printable(self.problem)}, then run this cell again" if self.todo else
                  f"✗ {name}: {printable(self.problem)}"]
         return "\n".join(lines + [f"  note: {printable(note)}" for note in self.notes])
 
     def _repr_html_(self):
-        color = "#116329" if self.passed else "#a40e26"  # on a light box, in the light and the dark theme
+        # on a light box, in the light and the dark theme: green, red, or a neutral grey for "to do"
+        color = "#116329" if self.passed else "#424a53" if self.todo else "#a40e26"
         text = repr(self).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
         return (f'<pre style="color: {color}; background: #f6f8fa; padding: 0.4em 0.6em; '
                 f'white-space: pre-wrap">{text}</pre>')
@@ -166,6 +169,7 @@ def judge(exercise, calls, raw, name=None):
         return feedback
     if runner.well_formed(raw) and len(raw) <= len(calls) and any("missing" in r for r in raw[-1:]):
         feedback.problem = "not written yet: replace `raise NotImplementedError` with your code"
+        feedback.todo = True
         return feedback
     if not runner.well_formed(raw) or len(raw) != len(calls):  # read back from elsewhere (the grader's sandbox)
         feedback.problem = "the process the answer ran in sent back something that is not its results"

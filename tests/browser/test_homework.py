@@ -23,7 +23,13 @@ def test_the_student_site_has_exercises_checks_and_no_solution(servers, browser)
         page = visit.page
         assert page.locator(".exercise").count() >= 3
         assert page.locator(".solution").count() == 0
-        assert page.get_by_text("not written yet").count() >= 2  # the checks ran on the starters
+        todo = page.locator("pre", has_text="to do, not written yet")  # the checks ran on the starters
+        assert todo.count() >= 2
+        for k in range(todo.count()):  # a neutral "to do", not a red error
+            text, colour = todo.nth(k).evaluate("e => [e.textContent, getComputedStyle(e).color]")
+            assert text.startswith("☐") and "✗" not in text and colour == "rgb(66, 74, 83)", (text, colour)
+        # where to run it, in the exercise's own words and the intro's
+        assert page.get_by_text("run this cell again").count() >= 2
     finally:
         visit.close()
 
