@@ -31,9 +31,7 @@ VIEWS = {"desktop": {"width": 1280, "dark": False}, "phone": {"width": 390, "dar
 REFRESH = re.compile(r'<meta\s+http-equiv="refresh"\s+content="\d+;\s*url=([^"]+)"', re.I)
 
 # Console errors this stack is known to print, harmless to a reader:
-ALLOWED_CONSOLE = [
-    r"Got invalid theme mode",                               # the theme, before it reads the stored mode
-]
+ALLOWED_CONSOLE = []
 
 
 def pages(site):

@@ -93,8 +93,10 @@ async waitingSource => {  // WAITING below, as text
     .map(e => (e.className || e.tagName) + ": " + e.textContent.trim().slice(0, 60))
 
 //# OPEN_SOLUTIONS
-() => document.querySelectorAll(".solution.toggle-hidden > .admonition-title .toggle-button")
-    .forEach(button => button.click())
+() => {  // every folded block, as a reader opens them: solutions, and the code behind a figure
+    document.querySelectorAll(".toggle-hidden > .admonition-title .toggle-button").forEach(b => b.click());
+    document.querySelectorAll("main details:not([open])").forEach(d => { d.open = true; });
+}
 
 //# SHOWN_SOLUTIONS
 () => [...document.querySelectorAll(".solution")].filter(s =>
