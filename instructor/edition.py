@@ -187,10 +187,10 @@ code and a check (`ddg.checks`) that says at once whether an answer is right, an
 The checks run your answers on public input, whose right results ship with `ddg`
 (`ddg/checks/public.json`); your instructor grades them on other, hidden input.
 
-This folder was written by `make student` in the course repository. To publish it, put everything
-but `html/` and `_build/` in the repository the course gives students (set `STUDENT_REPO` to its
-URL when running `make student`, so that the launch buttons and the notebooks' set-up cells lead
-there), and serve `html/` as the student site.
+This folder was written by `make student` in the course repository. `make publish-student
+STUDENT_REPO=https://github.com/owner/name` there builds it for that repository (its launch buttons
+and the notebooks' set-up cells lead there) and publishes it: everything but `html/` and `_build/`
+on the repository's main branch, `html/` (the student site) on its gh-pages branch.
 """
 
 

@@ -42,7 +42,7 @@ when the submission ends it kills whatever of its uid is left and reaps it.
 
 Elsewhere (not Linux, not root, tools missing, or a container that forbids namespaces) the harness
 runs in the same kind of process without the namespaces and the new root: as its own uid where the
-grader is root on Linux, else as the grader's user; see the README for what it can then see and do.
+grader is root on Linux, else as the grader's user; see INSTRUCTORS.md (Security) for what it can then see and do.
 bubblewrap could make the namespaces and the new root, but only for a new program: a new Python that
 imports what the zygote has takes about 0.6 s, a fork of the zygote, the sandbox made, under 0.1 s.
 """

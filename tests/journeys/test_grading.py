@@ -1,4 +1,4 @@
-"""Journeys: an instructor grades a class with `python -m instructor.grade`, as the README says.
+"""Journeys: an instructor grades a class with `python -m instructor.grade`, as INSTRUCTORS.md says.
 
 Every submission is a real notebook (the student edition of chapter 3, completed), graded in the
 real sandbox (these journeys need Linux and root). Each test is one thing an instructor relies on:
