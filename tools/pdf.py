@@ -69,8 +69,16 @@ def serve(site):
     return httpd
 
 
+SECTIONS = """() => [...document.querySelectorAll("main article.bd-article h2")].filter(h => h.getClientRects().length).map(h => {
+    const copy = h.cloneNode(true);
+    copy.querySelectorAll(".headerlink, mjx-assistive-mml").forEach(e => e.remove());
+    return copy.textContent.replace(/\\s+/g, " ").trim();
+})"""
+
+
 def print_page(browser, url, out, title):
-    """One page as PDF, with its fonts loaded and solutions open; returns its number of pages."""
+    """One page as PDF, with its fonts loaded and solutions open; returns its number of pages and
+    its sections (h2) with the page each starts on, for the PDF's bookmarks."""
     context = browser.new_context()
     context.route("**/*", lambda r: r.continue_() if r.request.url.startswith(url.split("/book/")[0])
                   or r.request.url.startswith("data:") else r.abort())
@@ -80,9 +88,36 @@ def print_page(browser, url, out, title):
     page.evaluate(EVERY_IMAGE)
     page.emulate_media(media="print")
     page.evaluate("() => document.fonts.ready.then(() => true)")  # the fonts the printed layout uses
-    page.pdf(path=str(out), format="A4", print_background=True, margin=MARGIN)
+    titles = page.evaluate(SECTIONS)
+    # tagged, with Chromium's outline: it knows on which page each heading landed
+    page.pdf(path=str(out), format="A4", print_background=True, margin=MARGIN, tagged=True, outline=True)
     context.close()
-    return len(PdfReader(out).pages)
+    reader = PdfReader(out)
+    headings = []
+    def walk(items):
+        for item in items:
+            walk(item) if isinstance(item, list) else headings.append((item.title, reader.get_destination_page_number(item)))
+    walk(reader.outline)
+    return len(reader.pages), located(titles, headings)
+
+
+def located(titles, headings):
+    """Each title with the page of the first heading of Chromium's outline (from the last one found
+    on) that holds its words. Its own titles are not used: in them words run together, some twice."""
+    squeeze = lambda text: re.sub(r"[\W_]+", "", text).lower()  # noqa: E731
+    found, at = [], 0
+    for title in titles:
+        words = squeeze(re.sub(r"^[\d.]+\s*", "", title))
+        at = next((k for k in range(at, len(headings)) if words and words in squeeze(headings[k][0])), at)
+        found.append((title, headings[at][1] if headings else 0))
+    return found
+
+
+def outlined(writer, name, start, sections):
+    """Bookmarks: ``name`` at page ``start``, its sections below it."""
+    parent = writer.add_outline_item(name, start)
+    for title, page in sections:
+        writer.add_outline_item(title, start + page, parent=parent)
 
 
 def feet(browser, texts, out):
@@ -104,11 +139,13 @@ def compact(writer):
     writer.compress_identical_objects(remove_duplicates=True, remove_unreferenced=True)
 
 
-def numbered(pdf, overlays, out):
-    """``pdf`` with each page's foot laid over it, written to ``out``."""
+def numbered(pdf, overlays, out, name, sections):
+    """``pdf`` with each page's foot laid over it and its bookmarks, written to ``out``."""
     writer = PdfWriter(clone_from=PdfReader(io.BytesIO(pathlib.Path(pdf).read_bytes())))
     for page, foot in zip(writer.pages, overlays, strict=True):
         page.merge_page(foot)
+    writer.root_object.pop(NameObject("/Outlines"), None)  # Chromium's, in place of ours
+    outlined(writer, name, 0, sections)
     compact(writer)
     with open(out, "wb") as file:
         writer.write(file)
@@ -171,11 +208,13 @@ def main(site, out):
     title = re.search(r'^title:\s*"([^"]+)"', config.read_text(), re.MULTILINE).group(1)
     httpd = serve(site)
     base = f"http://127.0.0.1:{httpd.server_port}/"
-    counts = []
+    counts, sections = [], []
     with sync_playwright() as p:
         browser = p.chromium.launch(executable_path=find_chromium(), args=FLAGS)
         for path, name in pages:
-            counts.append(print_page(browser, base + path, out / f"{pathlib.Path(path).stem}.pdf", name))
+            count, found = print_page(browser, base + path, out / f"{pathlib.Path(path).stem}.pdf", name)
+            counts.append(count)
+            sections.append(found)
         starts = [1 + sum(counts[:i]) for i in range(len(counts))]  # after the contents page
         contents_page(browser, title, [(name, start + 1) for (_, name), start in zip(pages, starts, strict=True)],
                       out / "contents.pdf")
@@ -189,14 +228,14 @@ def main(site, out):
     httpd.shutdown()
     writer = PdfWriter()
     writer.append(out / "contents.pdf")
-    for (path, name), start in zip(pages, starts, strict=True):
-        writer.append(out / f"{pathlib.Path(path).stem}.pdf")
-        writer.add_outline_item(title=name, page_number=start)
+    for (path, name), start, found in zip(pages, starts, sections, strict=True):
+        writer.append(out / f"{pathlib.Path(path).stem}.pdf", import_outline=False)
+        outlined(writer, name, start, found)
     for page, foot in zip(writer.pages, book_feet, strict=True):
         page.merge_page(foot)
-    for (path, _), overlays in zip(pages, chapter_feet, strict=True):  # after the book took them unnumbered
+    for (path, name), overlays, found in zip(pages, chapter_feet, sections, strict=True):  # after the book took them
         chapter = out / f"{pathlib.Path(path).stem}.pdf"
-        numbered(chapter, overlays, chapter)
+        numbered(chapter, overlays, chapter, name, found)
     link_contents(writer, starts)
     writer.add_metadata({"/Title": title})
     compact(writer)

@@ -71,6 +71,16 @@ def test_every_chapter_prints_with_its_headings_figures_and_whole_code_lines(sit
         assert not tex, f"{pdf.name}: TeX source outside the code: {sorted(tex)[:5]}"
         figures = len(main.select("figure img, .cell_output img"))
         assert images >= figures, f"{pdf.name}: {images} images for {figures} figures"
+        assert "Press ▶" not in text, f"{pdf.name}: a printed strip cannot be played"
+        # bookmarks: the chapter, and below it each section (h2), on the page it starts on
+        outline = PdfReader(pdf).outline
+        titles = [re.sub(r"\s+", " ", h.get_text(" ", strip=True).rstrip("#").strip())
+                  for h in main.select("article.bd-article h2")]
+        assert len(outline) == 2 and [item.title for item in outline[1]] == titles, (pdf.name, outline)
+        for item in outline[1]:
+            page = PdfReader(pdf).get_destination_page_number(item)
+            heading = re.sub(r"^[\d.]+\s*", "", item.title)
+            assert squeeze(heading)[:30] in squeeze(texts[page]), (pdf.name, item.title, page)
         code = [line for pre in main.select("div.cell_input pre") if not pre.find_parent("details")
                 for line in pre.get_text().splitlines()]  # the code a page shows (folded code prints folded)
         longest = max(code, key=len, default="")
@@ -84,10 +94,15 @@ def test_the_book_pdf_has_every_chapter_in_order_and_a_linked_contents_page(site
     book = PdfReader(pdf_dir / "book.pdf")
     counts = [len(PdfReader(pdf_dir / f"{name.split('/')[-1]}.pdf").pages) for name in chapters()]
     assert len(book.pages) == 1 + sum(counts)
-    outline = book.outline
+    outline = [item for item in book.outline if not isinstance(item, list)]  # a chapter's sections: a list after it
     assert len(outline) == len(chapters())
     starts = [book.get_destination_page_number(item) for item in outline]
     assert starts == [1 + sum(counts[:i]) for i in range(len(counts))]
+    sections = [item for item in book.outline if isinstance(item, list)]
+    assert len(sections) == len(chapters()) and all(len(s) >= 3 for s in sections)
+    for start, count, below in zip(starts, counts, sections, strict=True):  # each within its chapter, in order
+        pages = [book.get_destination_page_number(item) for item in below]
+        assert pages == sorted(pages) and start <= pages[0] and pages[-1] < start + count, (start, count, pages)
     links = [a.get_object() for a in book.pages[0].get("/Annots", [])]
     targets = [book.get_page_number(a["/A"]["/D"][0]) if hasattr(book, "get_page_number") else None for a in links]
     assert targets == starts, "the contents page does not link to each chapter's first page"
