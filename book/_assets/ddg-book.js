@@ -86,3 +86,20 @@ window.addEventListener("load", function () {
   var root = new URL(document.documentElement.getAttribute("data-content_root") || "./", location.href);
   navigator.serviceWorker.register(new URL("sw.js", root).href).catch(function () {});
 });
+
+// Search results quote the prose: a formula is read as its text when that is a symbol or two
+// ("ψi"), else "…"; code, outputs, figures and explorers are left out (their text reads as noise).
+// Sphinx's search page calls Search.htmlToText on each page it quotes, after this deferred script.
+if (typeof Search !== "undefined" && Search.htmlToText) {
+  var sphinxToText = Search.htmlToText;
+  Search.htmlToText = function (htmlString, anchor) {
+    var doc = new DOMParser().parseFromString(htmlString, "text/html");
+    doc.querySelectorAll("div.highlight, .cell_output, figure, .ddg-explorer, .ddg-lab, .bd-toc, .prev-next-area, details")
+      .forEach(function (e) { e.remove(); });
+    doc.querySelectorAll("mjx-container").forEach(function (m) {
+      var spoken = (m.querySelector("mjx-assistive-mml") || m).textContent.replace(/\s+/g, "");
+      m.replaceWith(spoken.length <= 3 && m.getAttribute("display") !== "true" ? spoken : "…");
+    });
+    return sphinxToText(doc.documentElement.outerHTML, anchor).replace(/\s+/g, " ");
+  };
+}

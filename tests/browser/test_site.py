@@ -276,6 +276,11 @@ def test_a_reader_searches_from_a_chapter(servers, browser, site):
         page.wait_for_function("() => document.querySelectorAll('#search-results li').length >= 3", timeout=20000)
         found = page.eval_on_selector_all("#search-results li a", "links => links.map(a => a.getAttribute('href'))")
         assert any("03_winding_number" in href for href in found), found
+        # each result quotes the prose: no TeX, no formula read out as a run of symbols, no code
+        page.wait_for_function("() => document.querySelectorAll('#search-results li .context').length >= 3")
+        snippets = page.eval_on_selector_all("#search-results li .context", "ps => ps.map(p => p.textContent)")
+        noise = [t for t in snippets if re.search(r"\\[a-zA-Z]+|\$|∫|=2π|import |ddg\.\w+\(|\[\[", t)]
+        assert not noise and any("turning number" in t for t in snippets), (noise[:3], snippets[:3])
         assert not scripts_unused(page, visit.requests[visit.requests.index(page.url):])
         assert not visit.outside and not visit.failed and not visit.unexpected_console()
     finally:
