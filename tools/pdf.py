@@ -14,6 +14,7 @@ site offers its chapter's PDF and the book's next to its .ipynb download.
 """
 
 import functools
+import html
 import http.server
 import io
 import logging
@@ -29,6 +30,7 @@ from pypdf.generic import ArrayObject, DictionaryObject, FloatObject, NameObject
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 from tools.browser import find as find_chromium  # noqa: E402
+from tools.sphinx_offline import write_service_worker  # noqa: E402
 
 FLAGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking",
          "--disable-component-update", "--disable-sync"]
@@ -151,17 +153,20 @@ def numbered(pdf, overlays, out, name, sections):
         writer.write(file)
 
 
-def contents_page(browser, title, entries, out):
-    """The title page with a table of contents; each entry links to a placeholder URL, then fixed."""
-    rows = "".join(f'<li><a href="https://contents.invalid/{i}">{name}</a><span>{page}</span></li>'
+def contents_page(browser, title, entries, out, repository=None):
+    """The title page with a table of contents; each entry links to a placeholder URL, then fixed.
+    With ``repository``, it says where the chapters' notebooks are."""
+    rows = "".join(f'<li><a href="https://contents.invalid/{i}">{html.escape(name)}</a><span>{page}</span></li>'
                    for i, (name, page) in enumerate(entries))
-    html = (f"<html><head><meta charset='utf-8'><style>body {{ font-family: sans-serif; margin: 3cm 2.5cm; }}"
+    where = (f'<p>The chapters as notebooks to run: <a href="{html.escape(repository)}">{html.escape(repository)}</a></p>'
+             if repository else "")
+    page_html = (f"<html><head><meta charset='utf-8'><style>body {{ font-family: sans-serif; margin: 3cm 2.5cm; }}"
             "h1 { font-size: 26pt; } li { display: flex; justify-content: space-between; margin: 0.4em 0; }"
             "a { color: #0a4f8a; text-decoration: none; } ol { padding: 0; list-style: none; }</style></head>"
-            f"<body><h1>{title}</h1><h2>Contents</h2><ol>{rows}</ol></body></html>")
+            f"<body><h1>{html.escape(title)}</h1>{where}<h2>Contents</h2><ol>{rows}</ol></body></html>")
     context = browser.new_context()
     page = context.new_page()
-    page.set_content(html)
+    page.set_content(page_html)
     page.pdf(path=str(out), format="A4", print_background=True)
     context.close()
 
@@ -205,7 +210,10 @@ def main(site, out):
     pages = chapters(site)
     config = site.parent / "_config.yml"  # the student edition's, next to its html/; else the book's
     config = config if config.exists() else ROOT / "_config.yml"
-    title = re.search(r'^title:\s*"([^"]+)"', config.read_text(), re.MULTILINE).group(1)
+    settings = yaml.safe_load(config.read_text())
+    title = settings["title"]
+    # the repository the site's buttons lead to (none: the student edition without a student repository)
+    repository = settings["repository"]["url"] if settings.get("html", {}).get("use_repository_button") else None
     httpd = serve(site)
     base = f"http://127.0.0.1:{httpd.server_port}/"
     counts, sections = [], []
@@ -217,7 +225,7 @@ def main(site, out):
             sections.append(found)
         starts = [1 + sum(counts[:i]) for i in range(len(counts))]  # after the contents page
         contents_page(browser, title, [(name, start + 1) for (_, name), start in zip(pages, starts, strict=True)],
-                      out / "contents.pdf")
+                      out / "contents.pdf", repository)
         total = 1 + sum(counts)
         book_feet = feet(browser, [""] + [f"{name} &middot; page {start + k} of {total}" for (_, name), start, count
                                           in zip(pages, starts, counts, strict=True) for k in range(1, count + 1)],
@@ -248,6 +256,7 @@ def main(site, out):
     for pdf in out.glob("*.pdf"):
         (copy / pdf.name).write_bytes(pdf.read_bytes())
     offer_downloads(site, pages)
+    write_service_worker(site)  # the pages changed: readers who kept the book offline get them
     print(f"{out / 'book.pdf'}: {1 + sum(counts)} pages, {(out / 'book.pdf').stat().st_size / 2**20:.1f} MB; "
           f"{len(pages)} chapter PDFs in {out}")
 

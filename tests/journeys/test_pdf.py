@@ -11,6 +11,7 @@ import re
 
 import pypdfium2
 import pytest
+import yaml
 from bs4 import BeautifulSoup
 from journey_helpers import ROOT
 from pypdf import PdfReader
@@ -114,6 +115,11 @@ def test_the_book_pdf_has_every_chapter_in_order_and_a_linked_contents_page(site
         first = read(pdf_dir / f"{name.split('/')[-1]}.pdf")[0][0]
         assert f"page 1 of {count}" in first, (name, first[-120:])  # a chapter's own PDF counts its own
     contents = texts[0]
+    course = yaml.safe_load((ROOT / "_config.yml").read_text())["repository"]["url"]
+    if site == "book":  # where the notebooks are; the student edition (built without one) names none
+        assert course in squeeze(contents) or squeeze(course) in squeeze(contents), contents[:300]
+    else:
+        assert "github.com" not in contents, contents[:300]
     for name, start in zip(chapters(), starts, strict=True):  # as the contents page says
         assert re.search(rf"(?<!\d){start + 1}(\s|$)", contents), (name, start + 1)
 
