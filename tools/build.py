@@ -88,7 +88,8 @@ def book():
             shutil.rmtree(BUILD / name, ignore_errors=True)
     run(JB, "build", ".")
     stamp(BUILD, **now)
-    print(f"The book is at {BUILD / 'html' / 'index.html'}")
+    print(f"The book is in {BUILD / 'html'}; to read it: python3 -m http.server -d {BUILD / 'html'} "
+          "and open http://localhost:8000 (opened as a file, its formulas lose their fonts)")
 
 
 def strict():
@@ -130,7 +131,7 @@ def student(fresh=False, force=False, student_repo=None):
         sys.exit("make student: the student edition was not finished (its site removed): see above")
     else:
         stamp(out / "_build", guarded=guarded)
-    print(f"The student site is at {out / 'html' / 'index.html'}")
+    print(f"The student site is in {out / 'html'}; to read it: python3 -m http.server -d {out / 'html'}")
 
 
 def student_is_current():
