@@ -498,7 +498,7 @@ def main(argv=None):
         graded_here = submissions[k - 1::n]
     if not sandbox.available() and not args.merge:
         print("note: no sandbox here (it needs Linux, root, unshare, mount and chroot, and namespaces): "
-              "each submission runs as you and can read what you can (see INSTRUCTORS.md, "Security")", file=sys.stderr)
+              "each submission runs as you and can read what you can (see INSTRUCTORS.md, Security)", file=sys.stderr)
     out.mkdir(parents=True, exist_ok=True)
     exports.save_state(out, state)  # what the instructor entered is kept before anything runs
     start = time.monotonic()

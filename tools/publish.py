@@ -98,8 +98,11 @@ def publish_student(repo, remote):
         if git("clone", "-q", remote, str(work), cwd=scratch, check=False, capture=True).returncode != 0:
             sys.exit(f"error: cannot clone {repo} (pushing to {safe(remote)}): does the repository exist, "
                      "and may you write to it (STUDENT_REPO_TOKEN)?")
-        if not git("rev-parse", "-q", "--verify", "HEAD", cwd=work, check=False, capture=True).stdout:
-            git("checkout", "-q", "-b", "main", cwd=work)  # an empty repository: its first commit
+        # the edition goes on main, after its last commit (whatever the repository's default branch)
+        if git("ls-remote", "--exit-code", "--heads", "origin", "main", cwd=work, check=False, capture=True).returncode == 0:
+            git("checkout", "-q", "-B", "main", "origin/main", cwd=work)
+        else:  # an empty repository, or one without main (what its default branch holds is kept): main begins
+            git("checkout", "-q", "--orphan", "main", cwd=work)
         before = (work / WRITTEN).read_text().split("\n") if (work / WRITTEN).exists() else []
         for name in set(before) - set(files) - {""}:  # what the last edition wrote and this one does not
             (work / name).unlink(missing_ok=True)
@@ -111,9 +114,8 @@ def publish_student(repo, remote):
         if git("diff", "--cached", "--quiet", cwd=work, check=False).returncode:
             git(*GIT_USER, "commit", "-q", "-m", "The student edition, published by make publish-student",
                 cwd=work)
-            branch = git("rev-parse", "--abbrev-ref", "HEAD", cwd=work, capture=True).stdout.strip()
-            git("push", "-q", "origin", f"HEAD:{branch}", cwd=work)
-            print(f"published: {len(files)} files of the student edition on {branch} of {repo}")
+            git("push", "-q", "origin", "HEAD:main", cwd=work)
+            print(f"published: {len(files)} files of the student edition on main of {repo}")
         else:
             print(f"the student repository {repo} already holds this edition")
     version = site_onto_pages(edition / "html", remote, "The student site, published by make publish-student")

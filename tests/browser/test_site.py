@@ -307,7 +307,8 @@ def test_a_phone_reader_opens_the_chapter_list_by_tapping_the_menu(servers, brow
         page.wait_for_selector("#pst-primary-sidebar-modal[open]", timeout=5000)
         listed = page.eval_on_selector_all("#pst-primary-sidebar-modal a.reference:visible",
                                            "links => links.map(a => a.getAttribute('href'))")
-        assert sum(bool(re.search(r"\d\d_\w+\.html$", h)) for h in listed) >= 10, listed
+        chapters = sum(bool(re.search(r"\d\d_\w+\.html$", h)) for h in listed) + listed.count("#")  # "#": this one
+        assert chapters >= 10, listed
         link = page.locator("#pst-primary-sidebar-modal a[href$='03_winding_number.html']").first
         link.tap()
         page.wait_for_url("**/03_winding_number.html")

@@ -180,8 +180,8 @@ def test_make_publish_then_a_reader_on_a_sub_path_reads_offline_and_gets_the_nex
         # the menu opens offline too, by touch, and lists every chapter
         page.goto(base + pages[0], wait_until="load")
         page.locator(".primary-toggle:visible").first.tap()
-        page.wait_for_selector("#pst-primary-sidebar a.reference", state="visible")
-        assert page.locator("#pst-primary-sidebar a.reference:visible").count() >= 10
+        page.wait_for_selector("#pst-primary-sidebar-modal[open]", timeout=5000)
+        assert page.locator("#pst-primary-sidebar-modal a.reference:visible").count() >= 10
 
         # the course team publishes a new build; the reader comes back online and gets it
         second = tmp_path / "site-2"
