@@ -81,7 +81,9 @@ def cached_files(site):
             name, _, query = reference.partition("?")
             target = posixpath.normpath(posixpath.join(posixpath.dirname(path), name))
             if target in present and not target.startswith(NOT_CACHED):
-                entry = f"{target}?{query}" if query else target
+                # a file by the address the page asks for it (?v=digest); a page once, whatever its
+                # query (the lab's presets): pages are looked up without it
+                entry = f"{target}?{query}" if query and not target.endswith(".html") else target
                 if entry not in found:
                     found.add(entry)
                     todo.append(target)
