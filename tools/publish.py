@@ -73,9 +73,28 @@ def url_of(remote):
     sys.exit(f"error: the course repository has no remote {remote!r}; give REMOTE=URL (or a path)")
 
 
+def pages_address(url):
+    """Where GitHub Pages serves the gh-pages branch of ``url``, if it is a GitHub repository."""
+    from tools.repo import github_url
+
+    github = github_url(url or "")
+    if not github:
+        return None
+    owner, name = github.removeprefix("https://github.com/").split("/")
+    return f"https://{owner.lower()}.github.io/{name}/"
+
+
+def next_step(url):
+    address = pages_address(url)
+    where = f" to serve it at {address}" if address else ""
+    print(f"once, on GitHub: Settings > Pages > Deploy from a branch > gh-pages{where}")
+
+
 def publish_book(remote):
-    version = site_onto_pages(ROOT / "_build" / "html", url_of(remote), "The book, published by make publish")
+    url = url_of(remote)
+    version = site_onto_pages(ROOT / "_build" / "html", url, "The book, published by make publish")
     print(f"published: _build/html (build {version}) on the gh-pages branch of {safe(remote)}")
+    next_step(url)
 
 
 def edition_files(edition):
@@ -120,6 +139,7 @@ def publish_student(repo, remote):
             print(f"the student repository {repo} already holds this edition")
     version = site_onto_pages(edition / "html", remote, "The student site, published by make publish-student")
     print(f"published: the student site (build {version}) on the gh-pages branch of {repo}")
+    next_step(repo)
 
 
 def safe(url):

@@ -124,7 +124,10 @@ def test_make_publish_then_a_reader_on_a_sub_path_reads_offline_and_gets_the_nex
     bare = tmp_path / "pages.git"
     subprocess.run(["git", "init", "-q", "--bare", str(bare)], check=True)
     published = run([sys.executable, "tools/publish.py", "book", "--remote", str(bare)])
-    assert "gh-pages" in published.stdout
+    assert "gh-pages" in published.stdout and "Settings > Pages" in published.stdout  # what to do next
+    from tools.publish import pages_address
+
+    assert pages_address("git@github.com:Some-Team/dg-course.git") == "https://some-team.github.io/dg-course/"
     tree = git_checkout(bare, "gh-pages", tmp_path / "site")
     assert (tree / ".nojekyll").exists()  # else Jekyll drops _static/ and _images/
     built = {p.relative_to(SITE).as_posix() for p in SITE.rglob("*") if p.is_file()}
