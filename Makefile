@@ -101,6 +101,7 @@ repo: $(ENV)
 # The book online: built with its PDFs, then _build/html onto the gh-pages branch of REMOTE (default
 # origin; a remote's name, a URL or a path), with .nojekyll (tools/publish.py, by ghp-import).
 publish: $(ENV) $(VENDOR) $(KERNEL)
+	@$(PY) tools/publish.py book --check $(if $(REMOTE),--remote $(REMOTE))
 	@$(MAKE) --no-print-directory book
 	@$(MAKE) --no-print-directory pdf
 	@$(PY) tools/publish.py book $(if $(REMOTE),--remote $(REMOTE))
@@ -109,7 +110,8 @@ publish: $(ENV) $(VENDOR) $(KERNEL)
 # there), its files pushed to that repository's main branch and its site to its gh-pages branch.
 # STUDENT_REMOTE: where to push instead of STUDENT_REPO itself (an ssh URL, a path).
 publish-student: $(ENV) $(VENDOR) $(KERNEL)
-	@[ -n "$(STUDENT_REPO)" ] || { echo "usage: make publish-student STUDENT_REPO=https://github.com/owner/name" >&2; exit 1; }
+	@[ -n "$(STUDENT_REPO)" ] || { echo "usage: make publish-student STUDENT_REPO=https://github.com/owner/name [STUDENT_REMOTE=where to push]" >&2; exit 1; }
+	@$(PY) tools/publish.py student --check --repo $(STUDENT_REPO) $(if $(STUDENT_REMOTE),--remote $(STUDENT_REMOTE))
 	@$(MAKE) --no-print-directory student STUDENT_REPO=$(STUDENT_REPO)
 	@$(PY) tools/publish.py student --repo $(STUDENT_REPO) $(if $(STUDENT_REMOTE),--remote $(STUDENT_REMOTE))
 

@@ -176,21 +176,22 @@ def _refuse_if_changed(folder, force, doing):
                  "(make ... FORCE=1) to discard them.")
 
 
-STUDENT_README = """# {title}: the student edition
+STUDENT_README = """# {title}
 
-The chapter notebooks of the course without their solutions: each coding exercise has starter
-code and a check (`ddg.checks`) that says at once whether an answer is right, and what is wrong.
+The chapter notebooks of the course, for you to work in: each coding exercise has starter code
+and, below it, a check (`ddg.checks`) that says at once whether your answer is right and, if not,
+what is wrong.{site}
 
-- Run the notebooks: `pip install -r requirements.txt`, then `jupyter lab book/`.
-- In Colab or a plain Jupyter, a notebook's first cell installs the course's package `ddg`.
+- **Online:** open a chapter on Binder or Colab with the rocket button at the top of its page on
+  the site, or open `book/<chapter>.ipynb` here in Colab. The notebook's first cell installs what
+  it needs.
+- **On your machine:** `pip install -r requirements.txt`, then `jupyter lab book/`.
+- In a chapter, write your answer in place of `raise NotImplementedError`, then run the check
+  cell below it. Until then it says "to do".
 
-The checks run your answers on public input, whose right results ship with `ddg`
-(`ddg/checks/public.json`); your instructor grades them on other, hidden input.
-
-This folder was written by `make student` in the course repository. `make publish-student
-STUDENT_REPO=https://github.com/owner/name` there builds it for that repository (its launch buttons
-and the notebooks' set-up cells lead there) and publishes it: everything but `html/` and `_build/`
-on the repository's main branch, `html/` (the student site) on its gh-pages branch.
+The checks run your answers on public input, whose right results come with `ddg`
+(`ddg/checks/public.json`); your instructor grades them on other, hidden input drawn for you, so
+an answer that only fits the public input will not pass.
 """
 
 
@@ -212,6 +213,7 @@ def _configure(text, student_repo):
         scripts.remove(script)
     substitutions = config["parse"]["myst_substitutions"]
     substitutions["homework"] = HOMEWORK.format(how=LAUNCHED if student_repo else DOWNLOADED)
+    substitutions["run_locally"] = "`pip install -r requirements.txt`, then `jupyter lab book/`."
     if student_repo:
         yaml_config.set_repository(config, student_repo)
     else:  # no repository of student notebooks: no launch or repository button rather than a wrong one
@@ -220,6 +222,34 @@ def _configure(text, student_repo):
         config["html"]["use_repository_button"] = False
         substitutions["launch"] = NO_LAUNCH
     return yaml_config.dump(config)
+
+
+FEEDBACK = """:::{{tip}} Feedback on your answers
+Each coding exercise below has starter code and, under it, a check cell. {how}, write your answer
+in place of `raise NotImplementedError` and run the check cell: it says at once whether the answer
+is right and, if not, what is wrong. Here, on the page, the checks show "to do".
+:::"""
+
+
+def _say_how_to_check(nb, nbformat, student_repo):
+    """Under a chapter's "Exercises" heading, where it has checks: how to run them, and where."""
+    if not any("check" in c.metadata.get("tags", []) for c in nb.cells):
+        return
+    heading = next((i for i, c in enumerate(nb.cells) if c.cell_type == "markdown"
+                    and re.search(r"^## Exercises", c.source, re.MULTILINE)), None)
+    if heading is None:
+        return
+    how = ("Open this chapter as a notebook (the rocket button at the top of its page: Binder or Colab; "
+           "or JupyterLab)" if student_repo else
+           "Download this chapter's notebook (the download button at the top of its page), open it in "
+           "JupyterLab or Colab")
+    cell = nbformat.v4.new_markdown_cell(FEEDBACK.format(how=how))
+    cell.id = f"{nb.cells[heading].id}-how"
+    if nb.cells[heading].source.strip() == "## Exercises":
+        nb.cells.insert(heading + 1, cell)
+    else:  # the heading is part of a longer cell: the tip goes right under the heading's line
+        nb.cells[heading].source = re.sub(r"^(## Exercises[^\n]*)\n*", lambda m: f"{m.group(1)}\n\n{cell.source}\n\n",
+                                          nb.cells[heading].source, count=1, flags=re.MULTILINE)
 
 
 def write_edition(root, out, force=False, vendor=None, student_repo=None):
@@ -243,6 +273,7 @@ def write_edition(root, out, force=False, vendor=None, student_repo=None):
             for cell in nb.cells:  # the set-up cell installs ddg from the student repository, never the course's
                 cell.source = re.sub(r'^REPOSITORY = "[^"]*"', f'REPOSITORY = "{student_repo or ""}"', cell.source,
                                      flags=re.MULTILINE)
+            _say_how_to_check(nb, nbformat, student_repo)
             target = out / "book" / path.name
             nbformat.write(nb, target)
             written[path.name] = _sha256(target)
@@ -266,7 +297,11 @@ def write_edition(root, out, force=False, vendor=None, student_repo=None):
     from tools import config as yaml_config
 
     title = yaml_config.load(config)["title"]
-    (out / "README.md").write_text(STUDENT_README.format(title=title))
+    from tools.publish import pages_address
+
+    address = pages_address(student_repo)
+    site = f"\n\nThe course notes, with every chapter: <{address}>." if address else ""
+    (out / "README.md").write_text(STUDENT_README.format(title=title, site=site))
     (out / ".gitignore").write_text("html/\n_build/\n__pycache__/\n")
     return out
 

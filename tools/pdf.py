@@ -117,9 +117,9 @@ def located(titles, headings):
 
 def outlined(writer, name, start, sections):
     """Bookmarks: ``name`` at page ``start``, its sections below it."""
-    parent = writer.add_outline_item(name, start)
+    parent = writer.add_outline_item(title=name, page_number=start)
     for title, page in sections:
-        writer.add_outline_item(title, start + page, parent=parent)
+        writer.add_outline_item(title=title, page_number=start + page, parent=parent)
 
 
 def feet(browser, texts, out):
@@ -202,8 +202,10 @@ def offer_downloads(site, pages):
                  f'<span class="btn__text-container">PDF of this chapter</span></a></li>'
                  f'<li><a href="{up}pdf/book.pdf" class="btn btn-sm dropdown-item ddg-pdf-link">'
                  f'<span class="btn__text-container">PDF of the book</span></a></li>')
-        html = html.replace('<ul class="dropdown-menu">', '<ul class="dropdown-menu">' + items, 1)
-        page.write_text(html)
+        menu = html.find('<ul class="dropdown-menu">', html.find("dropdown-download-buttons"))  # not the launch menu
+        if "dropdown-download-buttons" in html and menu >= 0:
+            menu += len('<ul class="dropdown-menu">')
+            page.write_text(html[:menu] + items + html[menu:])
 
 
 def main(site, out):

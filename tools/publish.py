@@ -31,7 +31,17 @@ from tools.sphinx_offline import write_service_worker  # noqa: E402
 
 GHP_IMPORT = pathlib.Path(sys.executable).parent / "ghp-import"
 WRITTEN = ".edition-files"  # in the student repository: what the last edition wrote there
-GIT_USER = ["-c", "user.name=ddg publish", "-c", "user.email=publish@localhost"]  # a fresh machine knows no one
+def identity():
+    """``-c user.name=... -c user.email=...``: yours where git knows you, else "ddg publish"."""
+    known = git("config", "user.email", cwd=ROOT, check=False, capture=True).stdout.strip()
+    return [] if known else ["-c", "user.name=ddg publish", "-c", "user.email=publish@localhost"]
+
+
+def built_from():
+    """Which commit of the course repository this is, and whether its work tree had changes."""
+    commit = git("rev-parse", "--short", "HEAD", cwd=ROOT, check=False, capture=True).stdout.strip() or "no commit"
+    dirty = git("status", "--porcelain", "--untracked-files=no", cwd=ROOT, check=False, capture=True).stdout.strip()
+    return f"from {commit}" + (" with uncommitted changes" if dirty else "")
 
 
 def git(*args, cwd, check=True, capture=False):
@@ -54,10 +64,12 @@ def site_onto_pages(site, remote, message):
         git("remote", "add", "target", remote, cwd=scratch)
         git("fetch", "-q", "--depth=1", "target", "gh-pages:refs/remotes/target/gh-pages", cwd=scratch, check=False,
             capture=True)  # none yet: the first publication
-        env = dict(os.environ, GIT_AUTHOR_NAME="ddg publish", GIT_AUTHOR_EMAIL="publish@localhost",
-                   GIT_COMMITTER_NAME="ddg publish", GIT_COMMITTER_EMAIL="publish@localhost")
+        env = dict(os.environ)
+        if identity():  # ghp-import commits with git's identity: there is none on a fresh machine
+            env.update(GIT_AUTHOR_NAME="ddg publish", GIT_AUTHOR_EMAIL="publish@localhost",
+                       GIT_COMMITTER_NAME="ddg publish", GIT_COMMITTER_EMAIL="publish@localhost")
         command = [str(GHP_IMPORT), "--no-jekyll", "--push", "--force", "--remote", "target", "--branch", "gh-pages",
-                   "--message", f"{message} (build {version})", str(site.resolve())]
+                   "--message", f"{message}, {built_from()} (build {version})", str(site.resolve())]
         if subprocess.run(command, cwd=scratch, env=env).returncode != 0:
             sys.exit(f"error: could not push {site} to the gh-pages branch of {safe(remote)}")
     return version
@@ -115,8 +127,8 @@ def publish_student(repo, remote):
         git("init", "-q", cwd=listing)
         files = edition_files(listing)
         if git("clone", "-q", remote, str(work), cwd=scratch, check=False, capture=True).returncode != 0:
-            sys.exit(f"error: cannot clone {repo} (pushing to {safe(remote)}): does the repository exist, "
-                     "and may you write to it (STUDENT_REPO_TOKEN)?")
+            sys.exit(f"error: cannot clone {safe(remote)}, where the student edition goes: does the repository "
+                     "exist, and may you write to it (with GitHub Actions: the secret STUDENT_REPO_TOKEN)?")
         # the edition goes on main, after its last commit (whatever the repository's default branch)
         if git("ls-remote", "--exit-code", "--heads", "origin", "main", cwd=work, check=False, capture=True).returncode == 0:
             git("checkout", "-q", "-B", "main", "origin/main", cwd=work)
@@ -131,15 +143,24 @@ def publish_student(repo, remote):
         (work / WRITTEN).write_text("\n".join(files) + "\n")
         git("add", "-A", cwd=work)
         if git("diff", "--cached", "--quiet", cwd=work, check=False).returncode:
-            git(*GIT_USER, "commit", "-q", "-m", "The student edition, published by make publish-student",
+            git(*identity(), "commit", "-q", "-m", f"The student edition, published by make publish-student, {built_from()}",
                 cwd=work)
             git("push", "-q", "origin", "HEAD:main", cwd=work)
-            print(f"published: {len(files)} files of the student edition on main of {repo}")
+            print(f"published: {len(files)} files of the student edition on main of {safe(remote)}")
         else:
-            print(f"the student repository {repo} already holds this edition")
+            print(f"the student repository ({safe(remote)}) already holds this edition")
     version = site_onto_pages(edition / "html", remote, "The student site, published by make publish-student")
-    print(f"published: the student site (build {version}) on the gh-pages branch of {repo}")
+    print(f"published: the student site (build {version}) on the gh-pages branch of {safe(remote)}")
     next_step(repo)
+
+
+def reachable(remote):
+    """Exit with a clear error, before anything is built, if ``remote`` cannot be read."""
+    result = git("ls-remote", "--heads", remote, cwd=ROOT, check=False, capture=True)
+    if result.returncode != 0:
+        reason = (result.stderr.strip().splitlines() or ["no answer"])[0].removeprefix("fatal: ")
+        sys.exit(f"error: cannot reach {safe(remote)}, where this would be published ({safe(reason)}); "
+                 "nothing was built or pushed")
 
 
 def safe(url):
@@ -153,17 +174,27 @@ def main(argv=None):
     parser.add_argument("what", choices=["book", "student"])
     parser.add_argument("--remote", help="where to push: a remote's name, a URL or a path")
     parser.add_argument("--repo", help="student: the student repository's URL (https://github.com/owner/name)")
+    parser.add_argument("--check", action="store_true", help="only check that the remote can be reached (before a build)")
     args = parser.parse_args(argv)
     if args.what == "book":
-        publish_book(args.remote or "origin")
+        if args.check:
+            reachable(url_of(args.remote or "origin"))
+        else:
+            publish_book(args.remote or "origin")
         return
     if not args.repo:
         parser.error("student: --repo URL is needed (make publish-student STUDENT_REPO=URL)")
+    from tools.build import repository
+
+    args.repo = repository(args.repo)
     remote = args.remote
     token = os.environ.get("STUDENT_REPO_TOKEN")
     if not remote and token and args.repo.startswith("https://github.com/"):
         remote = f"https://x-access-token:{token}@github.com/{args.repo.removeprefix('https://github.com/')}.git"
-    publish_student(args.repo, remote or args.repo)
+    if args.check:
+        reachable(remote or args.repo)
+    else:
+        publish_student(args.repo, remote or args.repo)
 
 
 if __name__ == "__main__":

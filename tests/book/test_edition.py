@@ -51,8 +51,23 @@ def test_student_repository_and_launch_buttons(tmp_path):
     first = json.loads((out / "book" / "01_smooth_curves.ipynb").read_text())["cells"]
     setup = "".join(next(c for c in first if c["cell_type"] == "code")["source"])
     assert 'REPOSITORY = "https://github.com/someone/course-students"' in setup
-    homework = yaml.safe_load(config)["parse"]["myst_substitutions"]["homework"]
+    substitutions = yaml.safe_load(config)["parse"]["myst_substitutions"]
+    homework = substitutions["homework"]
     assert "Binder or Colab" in homework and "run the check cell" in homework and "olded" not in homework
+    assert "make" not in substitutions["run_locally"]  # a student repository has no Makefile
+    readme = (out / "README.md").read_text()
+    assert readme.startswith("# Student edition: ") and readme.count("edition") == 1, readme[:200]
+    assert "https://someone.github.io/course-students/" in readme and "make " not in readme
+    # every chapter with checks says, under its Exercises heading, how to get feedback
+    for path in sorted((out / "book").glob("*.ipynb")):
+        cells = json.loads(path.read_text())["cells"]
+        if not any("check" in c["metadata"].get("tags", []) for c in cells):
+            continue
+        text = ["".join(c["source"]) for c in cells]
+        heading = next(i for i, t in enumerate(text) if "## Exercises" in t)
+        tip = next(i for i, t in enumerate(text) if "Feedback on your answers" in t)
+        first_check = next(i for i, c in enumerate(cells) if "check" in c["metadata"].get("tags", []))
+        assert heading <= tip < first_check and "rocket button" in text[tip], path.name
     out = edition.write_edition(ROOT, tmp_path / "without")
     config = (out / "_config.yml").read_text()
     assert "binderhub_url: ''" in config and "colab_url: ''" in config and "use_repository_button: false" in config

@@ -159,4 +159,6 @@ def test_each_page_offers_its_pdf():
     for site, (html_dir, _) in SITES.items():
         page = (html_dir / "book" / "03_winding_number.html").read_text()
         assert 'href="../pdf/03_winding_number.pdf"' in page and 'href="../pdf/book.pdf"' in page, site
+        menu = BeautifulSoup(page, "html.parser").select_one(".dropdown-download-buttons .dropdown-menu")
+        assert {a["href"] for a in menu.select("a.ddg-pdf-link")} == {"../pdf/03_winding_number.pdf", "../pdf/book.pdf"}
         assert (html_dir / "pdf" / "03_winding_number.pdf").exists()

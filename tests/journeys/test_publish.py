@@ -61,8 +61,7 @@ def test_the_book_workflow_tests_then_deploys_the_tested_site_with_pages_actions
     assert data[True]["push"]["branches"] == ["main"]  # YAML 1.1 reads the key `on` as True
     job_steps, jobs = steps(workflow)
     uses = [s["uses"].split("@")[0] for s in job_steps["test"] + job_steps["deploy"] if "uses" in s]
-    assert uses == ["actions/checkout", "actions/configure-pages", "actions/upload-pages-artifact",
-                    "actions/deploy-pages"]
+    assert uses == ["actions/checkout", "actions/upload-pages-artifact", "actions/deploy-pages"]
     runs = [s["run"] for s in job_steps["test"] if "run" in s]
     assert runs[-1].strip() == "make test"  # nothing is deployed that was not tested
     upload = next(s for s in job_steps["test"] if s.get("uses", "").startswith("actions/upload-pages-artifact"))
