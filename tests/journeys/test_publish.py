@@ -235,3 +235,17 @@ def test_make_publish_student_keeps_what_the_team_added_to_the_student_repositor
     assert not (again / "book" / "old_chapter.ipynb").exists()
     log = subprocess.run(["git", "log", "--format=%s", "main"], cwd=again, capture_output=True, text=True).stdout
     assert log.count("published by make publish-student") == 2 and "notes" in log  # history kept, nothing forced
+
+
+def test_a_mistyped_remote_or_repository_is_refused_before_anything_is_built(tmp_path):
+    """A typo costs seconds, not a build: the remote is checked first; an ssh address given as the
+    student repository (the launch buttons need its https address) is refused, saying what to give."""
+    for command, words in ((["make", "publish", f"REMOTE={tmp_path}/no-such.git"], "cannot reach"),
+                           (["make", "publish", "REMOTE=upstrem"], "no remote 'upstrem'"),
+                           (["make", "publish-student"], "usage: make publish-student STUDENT_REPO="),
+                           (["make", "publish-student", "STUDENT_REPO=https://github.com/someone/course-student",
+                             f"STUDENT_REMOTE={tmp_path}/no-such.git"], "cannot reach"),
+                           (["make", "publish-student", "STUDENT_REPO=course-student"], "https://github.com/owner/name")):
+        result = run(command, check=False, timeout=120)
+        assert result.returncode != 0 and words in result.stdout, (command, result.stdout[-800:])
+        assert "Traceback" not in result.stdout and "jupyter-book" not in result.stdout, command  # nothing built
