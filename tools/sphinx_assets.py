@@ -66,6 +66,10 @@ DYNAMIC = {"bs-tooltip-auto", "bs-popover-auto"}  # classes Bootstrap's script b
 FONT_FILES = re.compile(r'url\(([^)]*/webfonts/)(fa-[a-z]+-\d+)\.woff2\) format\("woff2"\),url\([^)]*\.ttf\) format\("truetype"\)')
 SEARCH_ONLY = re.compile(r'\s*<script src="[^"]*(searchtools\.js|language_data\.js|searchindex\.js)[^"]*"></script>')
 HEAD = [(re.compile(r'\s*<script defer src="[^"]*/fontawesome\.js[^"]*"></script>'), ""),
+        # the notebook's widget state, which no script of the book reads (its explorers are drawn by
+        # ddg-player.js from their own data) and whose ids are new at every run: without it, a build
+        # of the same book is the same bytes, and the service worker's version stays
+        (re.compile(r'\s*<script type="application/vnd\.jupyter\.widget-state\+json">.*?</script>', re.S), ""),
         (re.compile(r'\s*<link rel="preload" as="script" href="[^"]*"\s*/>'), ""),
         (re.compile(r'<link href="([^"]*)styles/theme\.css\?[^"]*" rel="stylesheet" />'),
          r'<link href="\1basic.css" rel="stylesheet" />')]
