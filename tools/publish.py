@@ -68,9 +68,15 @@ def site_onto_pages(site, remote, message):
         if identity():  # ghp-import commits with git's identity: there is none on a fresh machine
             env.update(GIT_AUTHOR_NAME="ddg publish", GIT_AUTHOR_EMAIL="publish@localhost",
                        GIT_COMMITTER_NAME="ddg publish", GIT_COMMITTER_EMAIL="publish@localhost")
-        command = [str(GHP_IMPORT), "--no-jekyll", "--push", "--force", "--remote", "target", "--branch", "gh-pages",
+        command = [str(GHP_IMPORT), "--no-jekyll", "--remote", "target", "--branch", "gh-pages",
                    "--message", f"{message}, {built_from()} (build {version})", str(site.resolve())]
         if subprocess.run(command, cwd=scratch, env=env).returncode != 0:
+            sys.exit(f"error: could not commit {site} for the gh-pages branch of {safe(remote)}")
+        tree = lambda ref: git("rev-parse", "-q", "--verify", f"{ref}^{{tree}}", cwd=scratch, check=False,  # noqa: E731
+                               capture=True).stdout.strip()
+        if tree("gh-pages") == tree("refs/remotes/target/gh-pages"):
+            print(f"the gh-pages branch of {safe(remote)} already holds this site (build {version})")
+        elif git("push", "-q", "--force", "target", "gh-pages", cwd=scratch, check=False).returncode != 0:
             sys.exit(f"error: could not push {site} to the gh-pages branch of {safe(remote)}")
     return version
 

@@ -229,12 +229,15 @@ def test_make_publish_student_keeps_what_the_team_added_to_the_student_repositor
     for command in (["add", "-A"], ["-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "notes"],
                     ["push", "-q", "origin", "main"]):
         subprocess.run(["git", *command], cwd=main, check=True)
-    run(publish)
+    second = run(publish)
+    assert "already holds this site" in second.stdout  # the same edition: no new commit of the site
     again = git_checkout(bare, "main", tmp_path / "again")
     assert (again / "NOTES.md").read_text() == "Office hours: Tuesday.\n"
     assert not (again / "book" / "old_chapter.ipynb").exists()
     log = subprocess.run(["git", "log", "--format=%s", "main"], cwd=again, capture_output=True, text=True).stdout
     assert log.count("published by make publish-student") == 2 and "notes" in log  # history kept, nothing forced
+    pages_log = subprocess.run(["git", "log", "--format=%s", "gh-pages"], cwd=bare, capture_output=True, text=True).stdout
+    assert pages_log.count("published by make publish-student") == 1, pages_log
 
 
 def test_a_mistyped_remote_or_repository_is_refused_before_anything_is_built(tmp_path):
