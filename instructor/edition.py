@@ -224,7 +224,9 @@ def _configure(text, student_repo):
     return yaml_config.dump(config)
 
 
-FEEDBACK = """:::{{tip}} Feedback on your answers
+FEEDBACK = """:::{{admonition}} Feedback on your answers
+:class: tip
+
 Each coding exercise below has starter code and, under it, a check cell. {how}, write your answer
 in place of `raise NotImplementedError` and run the check cell: it says at once whether the answer
 is right and, if not, what is wrong. Here, on the page, the checks show "to do".
