@@ -107,12 +107,15 @@ publish: $(ENV) $(VENDOR) $(KERNEL)
 	@$(PY) tools/publish.py book $(if $(REMOTE),--remote $(REMOTE))
 
 # The student edition online: built for STUDENT_REPO (its launch buttons and set-up cells lead
-# there), its files pushed to that repository's main branch and its site to its gh-pages branch.
+# there) and printed, its files pushed to that repository's main branch and its site (with its
+# PDFs) to its gh-pages branch.
 # STUDENT_REMOTE: where to push instead of STUDENT_REPO itself (an ssh URL, a path).
 publish-student: $(ENV) $(VENDOR) $(KERNEL)
 	@[ -n "$(STUDENT_REPO)" ] || { echo "usage: make publish-student STUDENT_REPO=https://github.com/owner/name [STUDENT_REMOTE=where to push]" >&2; exit 1; }
 	@$(PY) tools/publish.py student --check --repo $(STUDENT_REPO) $(if $(STUDENT_REMOTE),--remote $(STUDENT_REMOTE))
 	@$(MAKE) --no-print-directory student STUDENT_REPO=$(STUDENT_REPO)
+	@$(PY) tools/browser.py >/dev/null
+	@$(PY) tools/pdf.py _build/student/html _build/pdf/student
 	@$(PY) tools/publish.py student --repo $(STUDENT_REPO) $(if $(STUDENT_REMOTE),--remote $(STUDENT_REMOTE))
 
 # Everything built; the student edition too, unless a notebook there was changed since `make

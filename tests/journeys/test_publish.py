@@ -210,6 +210,10 @@ def test_make_publish_then_a_reader_on_a_sub_path_reads_offline_and_gets_the_nex
 def test_make_publish_student_keeps_what_the_team_added_to_the_student_repository(tmp_path):
     if not (STUDENT / "html" / "index.html").exists():
         pytest.fail("no student edition in _build/student: run `make test` (it builds it)")
+    dry = run(["make", "-n", "publish-student", "STUDENT_REPO=https://github.com/someone/course-student"]).stdout
+    steps = ["publish.py student --check", "print-directory student STUDENT_REPO=", "pdf.py _build/student/html",
+             "publish.py student --repo"]
+    assert all(step in dry for step in steps) and sorted(steps, key=dry.index) == steps, dry  # checked, built, printed, pushed
     bare = tmp_path / "student.git"
     subprocess.run(["git", "init", "-q", "--bare", str(bare)], check=True)
     publish = [sys.executable, "tools/publish.py", "student", "--repo", "https://github.com/someone/course-student",
