@@ -31,6 +31,8 @@ import shutil
 import sys
 
 from ddg._extras import missing
+from tools import config as yaml_config
+from tools.repo import pages_address
 
 MANIFEST = ".edition.json"
 """In the edition's notebook folder: the SHA-256 of each notebook as written, to tell a student's
@@ -39,16 +41,27 @@ changes from the edition's own files (changed notebooks are never overwritten or
 STARTER_NOTE = "# Exercise: write your answer here, then run the check below."
 
 ANSWER_SCRIPTS = ("ddg-lab-circle.js",)
-NO_LAUNCH = "The {fa}`download` button at the top of a chapter downloads its `.ipynb`."
-# how a student gets feedback, with launch buttons (a student repository) or without
+"""The book's scripts that compute an exercise's answer: left out of the student edition and its site."""
+
+# How a student gets feedback, with launch buttons (an edition for a student repository) or without:
+# said in the intro (HOMEWORK) and under every chapter's Exercises heading (FEEDBACK). Plain words,
+# no {fa} role: the notebooks show them in JupyterLab too.
+HOW = {True: "open the chapter on Binder or Colab (the rocket button at the top of its page) or in JupyterLab",
+       False: "download the chapter's notebook (the download button at the top of its page) and open it in "
+              "JupyterLab or Colab"}
 HOMEWORK = ("This edition has no solutions: each coding exercise has starter code and a check that tells you at once "
             "whether your answer is right and, if not, what is wrong. To get that feedback, {how}, replace the "
             "starter's `raise NotImplementedError` with your code, and run the check cell below your answer. On "
             "this page the checks show what they say to the starter code: ☐ to do.")
-LAUNCHED = "open the chapter on Binder or Colab (the {fa}`rocket` button at the top of the chapter) or in JupyterLab"
-DOWNLOADED = ("download the chapter's notebook (the {fa}`download` button at the top of the chapter) and open it in "
-              "JupyterLab or Colab")
-"""The book's scripts that compute an exercise's answer: left out of the student edition and its site."""
+FEEDBACK = """:::{{admonition}} Feedback on your answers
+:class: tip
+
+Each coding exercise below has starter code and, under it, a check cell. To get feedback, {how},
+write your answer in place of `raise NotImplementedError` and run the check cell: it says at once
+whether the answer is right and, if not, what is wrong. Here, on the page, the checks show "to do".
+:::"""
+NO_LAUNCH = "The {fa}`download` button at the top of a chapter downloads its `.ipynb`."
+RUN_LOCALLY = "`pip install -r requirements.txt`, then `jupyter lab book/`."  # a student repository has no Makefile
 
 
 def starter(source):
@@ -198,8 +211,6 @@ an answer that only fits the public input will not pass.
 def _configure(text, student_repo):
     """The course's ``_config.yml`` (its text), made into the student edition's (edited as YAML with
     ruamel.yaml, so that its comments stay)."""
-    from tools import config as yaml_config
-
     config = yaml_config.load(text)
     config["title"] = f"Student edition: {config['title']}"
     # executed like the book's, from a cache that `make student` keeps only while ddg/ is unchanged
@@ -212,8 +223,8 @@ def _configure(text, student_repo):
     for script in [s for s in scripts if s in ANSWER_SCRIPTS]:
         scripts.remove(script)
     substitutions = config["parse"]["myst_substitutions"]
-    substitutions["homework"] = HOMEWORK.format(how=LAUNCHED if student_repo else DOWNLOADED)
-    substitutions["run_locally"] = "`pip install -r requirements.txt`, then `jupyter lab book/`."
+    substitutions["homework"] = HOMEWORK.format(how=HOW[bool(student_repo)])
+    substitutions["run_locally"] = RUN_LOCALLY
     if student_repo:
         yaml_config.set_repository(config, student_repo)
     else:  # no repository of student notebooks: no launch or repository button rather than a wrong one
@@ -224,15 +235,6 @@ def _configure(text, student_repo):
     return yaml_config.dump(config)
 
 
-FEEDBACK = """:::{{admonition}} Feedback on your answers
-:class: tip
-
-Each coding exercise below has starter code and, under it, a check cell. {how}, write your answer
-in place of `raise NotImplementedError` and run the check cell: it says at once whether the answer
-is right and, if not, what is wrong. Here, on the page, the checks show "to do".
-:::"""
-
-
 def _say_how_to_check(nb, nbformat, student_repo):
     """Under a chapter's "Exercises" heading, where it has checks: how to run them, and where."""
     if not any("check" in c.metadata.get("tags", []) for c in nb.cells):
@@ -241,11 +243,7 @@ def _say_how_to_check(nb, nbformat, student_repo):
                     and re.search(r"^## Exercises", c.source, re.MULTILINE)), None)
     if heading is None:
         return
-    how = ("Open this chapter as a notebook (the rocket button at the top of its page: Binder or Colab; "
-           "or JupyterLab)" if student_repo else
-           "Download this chapter's notebook (the download button at the top of its page), open it in "
-           "JupyterLab or Colab")
-    cell = nbformat.v4.new_markdown_cell(FEEDBACK.format(how=how))
+    cell = nbformat.v4.new_markdown_cell(FEEDBACK.format(how=HOW[bool(student_repo)]))
     cell.id = f"{nb.cells[heading].id}-how"
     if nb.cells[heading].source.strip() == "## Exercises":
         nb.cells.insert(heading + 1, cell)
@@ -296,11 +294,7 @@ def write_edition(root, out, force=False, vendor=None, student_repo=None):
     for name in ("pyproject.toml", "requirements.txt", *extensions):
         (out / name).parent.mkdir(parents=True, exist_ok=True)
         shutil.copy(root / name, out / name)
-    from tools import config as yaml_config
-
     title = yaml_config.load(config)["title"]
-    from tools.publish import pages_address
-
     address = pages_address(student_repo)
     site = f"\n\nThe course notes, with every chapter: <{address}>." if address else ""
     (out / "README.md").write_text(STUDENT_README.format(title=title, site=site))

@@ -159,21 +159,6 @@ def pdf():
         sys.exit(1)
 
 
-def repository(url):
-    """The student repository as its launch buttons need it, https://github.com/owner/name, from any
-    spelling of it (an ssh remote, a trailing .git); refused with a clear error if it is no https URL."""
-    if not url:
-        return None
-    sys.path.insert(0, str(ROOT))
-    from tools.repo import github_url
-
-    url = github_url(url) or url.rstrip("/")
-    if not url.startswith("https://") or url.endswith(".git"):
-        sys.exit(f"error: STUDENT_REPO={url!r}: give the repository's address, https://github.com/owner/name "
-                 "(its ssh URL goes in STUDENT_REMOTE)")
-    return url
-
-
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("what", choices=["book", "strict", "student", "pdf"])
@@ -182,7 +167,10 @@ def main(argv=None):
     parser.add_argument("--student-repo", help="student: the repository the launch buttons open")
     args = parser.parse_args(argv)
     if args.what == "student":
-        student(args.fresh, args.force, repository(args.student_repo))
+        sys.path.insert(0, str(ROOT))
+        from tools.repo import https_url  # an ssh remote or a trailing .git would break the launch buttons
+
+        student(args.fresh, args.force, args.student_repo and https_url(args.student_repo, "STUDENT_REPO"))
     else:
         {"book": book, "strict": strict, "pdf": pdf}[args.what]()
 

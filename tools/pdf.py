@@ -95,12 +95,13 @@ def print_page(browser, url, out, title):
     page.pdf(path=str(out), format="A4", print_background=True, margin=MARGIN, tagged=True, outline=True)
     context.close()
     reader = PdfReader(out)
-    headings = []
-    def walk(items):
-        for item in items:
-            walk(item) if isinstance(item, list) else headings.append((item.title, reader.get_destination_page_number(item)))
-    walk(reader.outline)
-    return len(reader.pages), located(titles, headings)
+    return len(reader.pages), located(titles, outline_pages(reader, reader.outline))
+
+
+def outline_pages(reader, items):
+    """Every bookmark of ``items`` (nested lists, as pypdf reads them) in order: (title, page)."""
+    return [pair for item in items for pair in (outline_pages(reader, item) if isinstance(item, list)
+                                                else [(item.title, reader.get_destination_page_number(item))])]
 
 
 def located(titles, headings):
@@ -136,7 +137,8 @@ def feet(browser, texts, out):
 def compact(writer):
     """Each page's drawing compressed at zlib's level 9, and every repeated object (the fonts each
     chapter embeds again, an image printed twice) kept once: the book's PDF was 15.1 MB, now 6.4."""
-    # the tags Chromium wrote to find the headings' pages (its outline) go: a quarter of the bytes
+    # the tags Chromium wrote so that its outline finds the headings' pages go (the structure tree;
+    # the marks in the drawing stay): the book's PDF is 6.6 MB, 6.5 untagged
     writer.root_object.pop(NameObject("/StructTreeRoot"), None)
     writer.root_object.pop(NameObject("/MarkInfo"), None)
     for page in writer.pages:

@@ -27,10 +27,14 @@ import tempfile
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+from tools.repo import https_url, pages_address  # noqa: E402
 from tools.sphinx_offline import write_service_worker  # noqa: E402
 
 GHP_IMPORT = pathlib.Path(sys.executable).parent / "ghp-import"
 WRITTEN = ".edition-files"  # in the student repository: what the last edition wrote there
+LEFT_OUT = ("html", "_build")  # of _build/student: its site (published on gh-pages) and its build
+
+
 def identity():
     """``-c user.name=... -c user.email=...``: yours where git knows you, else "ddg publish"."""
     known = git("config", "user.email", cwd=ROOT, check=False, capture=True).stdout.strip()
@@ -91,17 +95,6 @@ def url_of(remote):
     sys.exit(f"error: the course repository has no remote {remote!r}; give REMOTE=URL (or a path)")
 
 
-def pages_address(url):
-    """Where GitHub Pages serves the gh-pages branch of ``url``, if it is a GitHub repository."""
-    from tools.repo import github_url
-
-    github = github_url(url or "")
-    if not github:
-        return None
-    owner, name = github.removeprefix("https://github.com/").split("/")
-    return f"https://{owner.lower()}.github.io/{name}/"
-
-
 def next_step(url):
     address = pages_address(url)
     where = f" to serve it at {address}" if address else ""
@@ -116,9 +109,9 @@ def publish_book(remote):
 
 
 def edition_files(edition):
-    """The student edition's files (relative paths), as its .gitignore keeps them: not html/, _build/."""
-    listed = git("ls-files", "--others", "--exclude-standard", "-z", cwd=edition, capture=True).stdout
-    return sorted(name for name in listed.split("\0") if name)
+    """The student edition's files (relative paths) that go into the student repository."""
+    return sorted(p.relative_to(edition).as_posix() for p in edition.rglob("*") if p.is_file()
+                  and p.relative_to(edition).parts[0] not in LEFT_OUT and "__pycache__" not in p.parts)
 
 
 def publish_student(repo, remote):
@@ -127,11 +120,7 @@ def publish_student(repo, remote):
         sys.exit("error: no student edition in _build/student; run `make student STUDENT_REPO=...` first")
     with tempfile.TemporaryDirectory() as scratch:
         work = pathlib.Path(scratch) / "student"
-        # the edition's files are listed by git as its .gitignore says (an empty repository of its own)
-        listing = pathlib.Path(scratch) / "listing"
-        shutil.copytree(edition, listing, ignore=shutil.ignore_patterns("html", "_build"))
-        git("init", "-q", cwd=listing)
-        files = edition_files(listing)
+        files = edition_files(edition)
         if git("clone", "-q", remote, str(work), cwd=scratch, check=False, capture=True).returncode != 0:
             sys.exit(f"error: cannot clone {safe(remote)}, where the student edition goes: does the repository "
                      "exist, and may you write to it (with GitHub Actions: the secret STUDENT_REPO_TOKEN)?")
@@ -145,7 +134,7 @@ def publish_student(repo, remote):
             (work / name).unlink(missing_ok=True)
         for name in files:
             (work / name).parent.mkdir(parents=True, exist_ok=True)
-            shutil.copy2(listing / name, work / name)
+            shutil.copy2(edition / name, work / name)
         (work / WRITTEN).write_text("\n".join(files) + "\n")
         git("add", "-A", cwd=work)
         if git("diff", "--cached", "--quiet", cwd=work, check=False).returncode:
@@ -190,9 +179,7 @@ def main(argv=None):
         return
     if not args.repo:
         parser.error("student: --repo URL is needed (make publish-student STUDENT_REPO=URL)")
-    from tools.build import repository
-
-    args.repo = repository(args.repo)
+    args.repo = https_url(args.repo, "STUDENT_REPO")
     remote = args.remote
     token = os.environ.get("STUDENT_REPO_TOKEN")
     if not remote and token and args.repo.startswith("https://github.com/"):

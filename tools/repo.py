@@ -46,10 +46,26 @@ def github_url(url):
     return f"https://github.com/{match.group(1)}" if match else None
 
 
+def pages_address(url):
+    """Where GitHub Pages serves the gh-pages branch of ``url``, if it is a GitHub repository."""
+    github = github_url(url or "")
+    if not github:
+        return None
+    owner, name = github.removeprefix("https://github.com/").split("/")
+    return f"https://{owner.lower()}.github.io/{name}/"
+
+
+def https_url(url, what="the repository"):
+    """``url`` as the launch buttons need it, ``https://github.com/owner/name`` for any spelling of a
+    GitHub remote (ssh, a trailing .git); anything but an https address is refused, saying what to give."""
+    url = github_url(url) or url.strip().rstrip("/")
+    if not re.match(r"^https://\S+$", url) or url.endswith(".git"):
+        sys.exit(f"error: {what} {url!r}: give the repository's address, https://github.com/owner/name")
+    return url
+
+
 def set_url(url):
-    url = github_url(url) or url
-    if not re.match(r"^https://\S+$", url):
-        sys.exit(f"error: {url!r} is not an https URL of a repository")
+    url = https_url(url)
     try:
         CONFIG.write_text(yaml_config.dump(yaml_config.set_repository(yaml_config.load(CONFIG), url)))
     except KeyError as error:

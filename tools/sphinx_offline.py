@@ -22,10 +22,9 @@ import re
 
 NAME = "sw.js"
 MANIFEST = "manifest.webmanifest"
-REFERENCE = re.compile(r"""\b(?:src|href)=["']([^"'#]+)["']""")
+REFERENCE = re.compile(r"""\b(?:src|href|data-src)=["']([^"'#]+)["']""")  # data-src: an explorer's states
 URL = re.compile(r"""url\(\s*["']?([^"')#]+)["']?\s*\)""")
 NOT_CACHED = ("_sources/", "pdf/")  # the notebooks' and the PDFs' downloads: large, and fetched on purpose
-ALWAYS = ("_static/ddg-states/", "searchindex.js")  # loaded by scripts, named in no attribute
 
 WORKER = """\
 // The book offline after one visit (written by tools/sphinx_offline.py; do not edit).
@@ -87,7 +86,6 @@ def cached_files(site):
                 if entry not in found:
                     found.add(entry)
                     todo.append(target)
-    found |= {p for p in present if p.startswith(ALWAYS)}
     return ["./", *sorted(found)]  # "./": the site's address itself, as a reader may open it
 
 

@@ -175,3 +175,34 @@ def test_the_pdf_step_knows_a_stale_student_edition(tmp_path, monkeypatch):
     os.utime(chapter, (site.stat().st_mtime - 5,) * 2)
     (root / "ddg/x.py").write_text("y")  # ddg changed: every output may differ
     assert not build.student_is_current()
+
+
+def test_every_spelling_of_a_github_repository_is_one_address_and_anything_else_a_clear_error():
+    """What an instructor types as STUDENT_REPO or `make repo URL=...`: any spelling of a GitHub
+    repository gives https://github.com/owner/name (and its Pages address); anything else exits
+    with a message that says what to give, never another exception."""
+    from hypothesis import given, strategies as st
+
+    from tools.repo import github_url, https_url, pages_address
+
+    part = st.from_regex(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,20}", fullmatch=True).filter(lambda p: not p.endswith(".git"))
+    forms = ["https://github.com/{}/{}", "https://github.com/{}/{}.git", "https://github.com/{}/{}/",
+             "git@github.com:{}/{}.git", "git@github.com:{}/{}", "ssh://git@github.com/{}/{}.git"]
+
+    @given(part, part, st.sampled_from(forms))
+    def spelled(owner, name, form):
+        url = https_url(form.format(owner, name))
+        assert url == f"https://github.com/{owner}/{name}" == github_url(url)
+        assert pages_address(url) == f"https://{owner.lower()}.github.io/{name}/"
+
+    @given(st.text(max_size=60))
+    def anything(text):
+        try:
+            url = https_url(text, "STUDENT_REPO")
+        except SystemExit as error:
+            assert "STUDENT_REPO" in str(error) and "https://github.com/owner/name" in str(error)
+        else:
+            assert url.startswith("https://") and not url.endswith(".git")
+
+    spelled()
+    anything()

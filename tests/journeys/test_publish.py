@@ -25,7 +25,7 @@ from journey_helpers import ROOT, copy_repository, run
 
 sync_api = pytest.importorskip("playwright.sync_api")
 sys.path.insert(0, str(ROOT))
-from tools.sphinx_offline import write_service_worker  # noqa: E402
+from tools.publish import site_onto_pages  # noqa: E402
 
 SITE, STUDENT = ROOT / "_build" / "html", ROOT / "_build" / "student"
 WORKFLOWS = sorted((ROOT / ".github" / "workflows").glob("*.yml"))
@@ -124,7 +124,7 @@ def test_make_publish_then_a_reader_on_a_sub_path_reads_offline_and_gets_the_nex
     subprocess.run(["git", "init", "-q", "--bare", str(bare)], check=True)
     published = run([sys.executable, "tools/publish.py", "book", "--remote", str(bare)])
     assert "gh-pages" in published.stdout and "Settings > Pages" in published.stdout  # what to do next
-    from tools.publish import pages_address
+    from tools.repo import pages_address
 
     assert pages_address("git@github.com:Some-Team/dg-course.git") == "https://some-team.github.io/dg-course/"
     tree = git_checkout(bare, "gh-pages", tmp_path / "site")
@@ -186,13 +186,17 @@ def test_make_publish_then_a_reader_on_a_sub_path_reads_offline_and_gets_the_nex
         page.wait_for_selector("#pst-primary-sidebar-modal[open]", timeout=5000)
         assert page.locator("#pst-primary-sidebar-modal a.reference:visible").count() >= 10
 
-        # the course team publishes a new build; the reader comes back online and gets it
-        second = tmp_path / "site-2"
-        shutil.copytree(tree, second, ignore=shutil.ignore_patterns(".git"))
-        intro = second / "book" / "intro.html"
+        # the course team publishes a new build (after the first on gh-pages); the reader comes back
+        # online and gets it
+        build = tmp_path / "build-2"
+        shutil.copytree(tree, build, ignore=shutil.ignore_patterns(".git"))
+        intro = build / "book" / "intro.html"
         intro.write_text(intro.read_text().replace("</h1>", " (second printing)</h1>", 1))
-        new_version = write_service_worker(second)
+        new_version = site_onto_pages(build, str(bare), "a second build")
         assert new_version != version
+        second = git_checkout(bare, "gh-pages", tmp_path / "site-2")
+        log = subprocess.run(["git", "log", "--format=%s"], cwd=second, capture_output=True, text=True).stdout
+        assert log.count("published by make publish") == 1 and "a second build" in log.splitlines()[0], log
         httpd = serve(second, port)
         page.goto(base + "book/intro.html", wait_until="load")
         assert "second printing" in page.locator("h1").first.inner_text()  # a page: from the network first
