@@ -255,6 +255,10 @@ def vertex_explorer(dx=0.0, dy=0.0):
 FLOW_COLORS = dict(zip(CURVATURES, (COLORS["blue"], COLORS["orange"], COLORS["green"]), strict=True))
 """The colour of each flow (by its curvature) in the chapters' figures and animations."""
 
+FLOW_WIDTHS = dict(zip(CURVATURES, (5.0, 3.0, 1.25), strict=True))
+"""The stroke width of each flow in :func:`flow_animation`, in pixels: the flows are drawn widest first,
+so that where they coincide each shows as a band around the next (blue, orange, then green)."""
+
 
 def inflation_pieces(curve, eps):
     """The pieces of the two inflations of a clockwise convex polygon by ``eps`` (lecture §3.4).
@@ -321,7 +325,9 @@ def flow_animation(runs, frames=16):
     """Snapshots of curve-shortening flows, one panel per curve with every flow drawn over its start.
 
     ``runs`` maps a curve's name to ``{kind: FlowRun}`` (see ``ddg.flow.flow``, run with at least
-    ``frames`` snapshots); frame ``j`` shows snapshot ``j`` of every run.
+    ``frames`` snapshots); frame ``j`` shows snapshot ``j`` of every run. Each flow has its colour
+    (:data:`FLOW_COLORS`) and width (:data:`FLOW_WIDTHS`), and the widest is drawn first, so that
+    flows that coincide stay visible as nested bands.
     """
     boxes = []
     for by_kind in runs.values():
@@ -336,14 +342,16 @@ def flow_animation(runs, frames=16):
         scene = Scene(boxes)
         for panel, (name, by_kind) in enumerate(runs.items()):
             scene.line(panel, next(iter(by_kind.values())).snapshots[0][1].vertices, COLORS["grey"], 1, True)
-            for kind, run in by_kind.items():
+            for kind, run in sorted(by_kind.items(), key=lambda item: -FLOW_WIDTHS[item[0]]):  # widest first
                 t, curve = run.snapshots[min(frame, len(run.snapshots) - 1)]
-                scene.line(panel, curve.vertices, FLOW_COLORS[kind], 1.5, True)
+                scene.line(panel, curve.vertices, FLOW_COLORS[kind], FLOW_WIDTHS[kind], True)
             scene.text(panel, 70, -10, f"{name}, t = {t:.2f}", "middle", 13, space="px")
-        kinds = list(next(iter(runs.values())))
-        scene.summary = ", ".join(f"{k} flow in {c}" for k, c in zip(kinds, ("blue", "orange", "green"), strict=False)) + \
-            "; the starting curve in grey."
+        kinds = sorted(next(iter(runs.values())), key=lambda kind: -FLOW_WIDTHS[kind])
+        names = {COLORS["blue"]: "blue", COLORS["orange"]: "orange", COLORS["green"]: "green"}
+        lines = [f"{k} flow in {names[FLOW_COLORS[k]]} ({FLOW_WIDTHS[k]:g} px)" for k in kinds]
+        scene.summary = ", ".join(lines) + ", drawn in that order, widest first; the starting curve in grey."
         scene.alt = (f"Frame {frame + 1} of {frames}: " + ", ".join(runs) + " shrinking under the flows, drawn on top "
-                     "of each other over their starting curves.")
+                     "of each other over their starting curves, the widest line first: where the flows coincide, "
+                     "the narrower lines run inside the wider ones.")
         scenes.append(scene)
     return Animation(scenes, "snapshot", range(1, frames + 1), title="Curve-shortening flow")

@@ -84,10 +84,11 @@ def _travel_step(curve, kind):
 def stable_step(curve, kind, safety=0.25):
     """An explicit time step from the shortest edges, safe for forward Euler.
 
-    The sine flow is the heat equation ``dv/dt = Lap v``; the stiffest mode of ``Lap`` decays at
-    rate about ``4 / (h A)`` at an edge of length ``h``. Forward Euler is stable when ``dt`` times
-    that rate stays below 2, so ``dt = h A / 2`` at the worst vertex, divided by ``g_i`` for the
-    faster flows. A vertex must also not travel farther than a fraction of its edges in one step,
+    The sine flow is the heat equation ``dv/dt = Lap v``; the stiffest mode of ``Lap`` decays at a
+    rate of at most ``max_i 4 / (h_i A_i)`` (Gershgorin), ``h_i`` the shorter edge at ``v_i``, and
+    on most polygons close to that (chapter 9 gives the lower bound). Forward Euler is stable when
+    ``dt`` times that rate stays below 2, so ``dt = h A / 2`` at the worst vertex is safe, divided
+    by ``g_i`` for the faster flows. A vertex must also not travel farther than a fraction of its edges in one step,
     which matters where ``k`` is huge (near kinks).
     """
     safety = nx.real(safety, "safety", 0.0, strict=True)

@@ -126,6 +126,24 @@ def test_animation_plays_its_scenes_in_order():
     assert [s["summary"] for s in data["states"].values()] == ["t = 0.0", "t = 0.1", "t = 0.2"]
 
 
+def test_flows_that_coincide_stay_visible_as_nested_bands():
+    """flow_animation draws each flow in its colour and width, the widest first: on a regular polygon,
+    where the three flows keep one shape, every colour still shows around the narrower ones."""
+    from ddg.explore import FLOW_COLORS, FLOW_WIDTHS, flow_animation
+    from ddg.flow import flow
+
+    polygon = ddg.regular_polygon(12)
+    runs = {"12-gon": {kind: flow(polygon, kind, 0.2, snapshots=3, progress=False) for kind in ddg.CURVATURES}}
+    scene = flow_animation(runs, frames=3).frames[-1]
+    lines = [item for item in scene.items if item["kind"] == "line" and item["color"] in FLOW_COLORS.values()]
+    assert [item["color"] for item in lines] == [FLOW_COLORS[kind] for kind in ddg.CURVATURES]
+    assert [item["width"] for item in lines] == [FLOW_WIDTHS[kind] for kind in ddg.CURVATURES]
+    assert FLOW_WIDTHS["angle"] > FLOW_WIDTHS["sine"] > FLOW_WIDTHS["tangent"]
+    assert "angle flow in blue (5 px), sine flow in orange (3 px), tangent flow in green (1.25 px)" in scene.summary
+    widths = re.findall(r'stroke="(#[0-9a-f]{6})" stroke-width="([\d.]+)"', svg(scene, 0))
+    assert [w for c, w in widths if c in FLOW_COLORS.values()] == ["5", "3", "1.25"]
+
+
 def test_scene_items_use_only_the_documented_keys():
     """ddg/scene.py documents each item key once; the player (ddg-player.js) reads the same names."""
     import ddg.scene
