@@ -7,8 +7,10 @@
  * polygons by polygon-clipping), and the three curve-shortening flows run side by side from it.
  * Everything else is computed by ddg-lab.js (ddg's formulas). Loaded only where there is a .ddg-lab
  * (tools/sphinx_assets.py). Data coordinates have y up; the SVG is drawn with y flipped. The address
- * can choose the start: ?lab=star&kind=tangent&n=24&arrows=1&inflate=minkowski&eps=0.4 (the
- * chapters link to the lab so).
+ * can choose the start: ?lab=star&kind=tangent&n=24&arrows=1&inflate=minkowski&eps=0.4#lab (the
+ * chapters link to the lab so), or a polygon of its own: ?v=x0,y0,x1,y1,...#lab (Copy address).
+ * Whatever the reader types or the address asks that the lab cannot do is said in words
+ * (.ddg-lab-message), and values at the rounding level of the polygon's scale are shown as 0.
  */
 (function () {
   "use strict";
@@ -67,7 +69,7 @@
   // rewrites the colour of a vertex only when it moves by a step (a phone restyles 500 circles slowly)
   function short(x) { return String(Number(x.toPrecision(6))); }  // six significant digits, as the summary shows them
   function element(name, attributes, parent) {
-    var svg = ["svg", "path", "circle", "g", "polyline", "line"].indexOf(name) >= 0;
+    var svg = ["svg", "path", "circle", "g", "polyline", "line", "text"].indexOf(name) >= 0;
     var e = document.createElementNS(svg ? SVG : "http://www.w3.org/1999/xhtml", name);
     Object.keys(attributes).forEach(function (a) { e.setAttribute(a, attributes[a]); });
     if (parent) parent.appendChild(e);
@@ -151,150 +153,351 @@
   function pathOf(points, closed) {
     return points.length ? "M" + points.map(function (p) { return p[0] + "," + -p[1]; }).join("L") + (closed ? "Z" : "") : "";
   }
-  function plot(svg, series, x0, x1, y0, y1) {  // polylines in a 360 x 120 chart: [[x, y] ...], styles; kept and reused
-    var pad = 0.06 * (y1 - y0 || 1), w = 360, h = 120, sx = w / (x1 - x0 || 1), sy = (h - 8) / (y1 - y0 + 2 * pad);
-    y0 -= pad;
-    if (!svg.axis) svg.axis = element("line", {x1: 0, x2: w, stroke: "currentColor", "stroke-opacity": 0.3}, svg);
-    svg.axis.setAttribute("y1", h - 4 + y0 * sy);
-    svg.axis.setAttribute("y2", h - 4 + y0 * sy);
-    svg.lines = svg.lines || [];
-    while (svg.lines.length > series.length) svg.removeChild(svg.lines.pop());
+  /* Round numbers for the axes: about `count` steps of 1, 2 or 5 times a power of ten from a to b. */
+  function ticks(a, b, count) {
+    var span = b - a || 1, step = Math.pow(10, Math.floor(Math.log10(span / count))), r = span / count / step, out = [];
+    step *= r >= 7.5 ? 10 : r >= 3.5 ? 5 : r >= 1.5 ? 2 : 1;
+    for (var x = Math.ceil(a / step - 1e-9) * step; x <= b + 1e-9 * span; x += step) out.push(Number(x.toPrecision(12)));
+    return out;
+  }
+  /* A chart with axes, ticks, axis labels and a legend, its lines kept and reused (a drag redraws it
+   * at every frame): series [{color, dashed, points: [[x, y] ...]}], marks [{x, color, label}]
+   * (vertical dashed lines: where a flow stopped, the time shown). */
+  var W = 400, H = 176, LEFT = 46, RIGHT = 10, TOP = 32, BOTTOM = 30;  // the legend above the y axis's name
+  function Chart(parent, xlabel, ylabel, legend) {
+    this.svg = element("svg", {class: "ddg-panel ddg-lab-chart", viewBox: "0 0 " + W + " " + H, width: W, height: H, role: "img"}, parent);
+    this.axes = element("g", {class: "ddg-chart-axes", "font-size": 11, fill: "currentColor"}, this.svg);
+    this.plotted = element("g", {}, this.svg);
+    this.marked = element("g", {}, this.svg);
+    this.labels = [xlabel, ylabel];
+    this.lines = [];
+    var x = LEFT;
+    legend.forEach(function (item) {  // [text, color, dashed]
+      element("line", {x1: x, x2: x + 18, y1: 8, y2: 8, stroke: item[1], "stroke-width": 2, "stroke-dasharray": item[2] ? "5 3" : "none"}, this.svg);
+      var t = element("text", {x: x + 22, y: 12, "font-size": 11, fill: "currentColor", class: "ddg-chart-legend"}, this.svg);
+      t.textContent = item[0];
+      x += 30 + 6.2 * item[0].length;
+    }, this);
+  }
+  Chart.prototype.draw = function (series, x0, x1, y0, y1, marks, alt) {
+    var pad = 0.06 * (y1 - y0 || 1), w = W - LEFT - RIGHT, h = H - TOP - BOTTOM;
+    y0 -= pad; y1 += pad;
+    var sx = w / (x1 - x0 || 1), sy = h / (y1 - y0 || 1);
+    var X = function (x) { return LEFT + (x - x0) * sx; }, Y = function (y) { return TOP + h - (y - y0) * sy; };
+    this.svg.setAttribute("aria-label", alt);
+    var key = [x0, x1, y0, y1].join();
+    if (key !== this.key) {  // the axes change only with the range (not at each frame of a drag)
+      this.key = key;
+      this.axes.textContent = "";
+      element("path", {d: "M" + LEFT + "," + TOP + "V" + (TOP + h) + "H" + (LEFT + w), fill: "none", stroke: "currentColor", "stroke-opacity": 0.6}, this.axes);
+      ticks(x0, x1, 6).forEach(function (x) {
+        element("line", {x1: X(x), x2: X(x), y1: TOP + h, y2: TOP + h + 4, stroke: "currentColor"}, this.axes);
+        var t = element("text", {x: X(x), y: TOP + h + 15, "text-anchor": "middle", class: "ddg-chart-tick"}, this.axes);
+        t.textContent = short(x);
+      }, this);
+      ticks(y0, y1, 4).forEach(function (y) {
+        element("line", {x1: LEFT - 4, x2: LEFT + w, y1: Y(y), y2: Y(y), stroke: "currentColor", "stroke-opacity": y === 0 ? 0.5 : 0.12}, this.axes);
+        var t = element("text", {x: LEFT - 6, y: Y(y) + 4, "text-anchor": "end", class: "ddg-chart-tick"}, this.axes);
+        t.textContent = short(y);
+      }, this);
+      var xl = element("text", {x: LEFT + w, y: H - 2, "text-anchor": "end", class: "ddg-chart-label"}, this.axes);
+      xl.textContent = this.labels[0];
+      var yl = element("text", {x: 2, y: TOP - 8, class: "ddg-chart-label"}, this.axes);
+      yl.textContent = this.labels[1];
+    }
+    while (this.lines.length > series.length) this.plotted.removeChild(this.lines.pop());
     series.forEach(function (s, j) {
-      var line = svg.lines[j] || (svg.lines[j] = element("polyline", {fill: "none", "stroke-width": 1.5}, svg));
+      var line = this.lines[j] || (this.lines[j] = element("polyline", {fill: "none", "stroke-width": 1.5}, this.plotted));
       line.setAttribute("stroke", s.color);
       line.setAttribute("stroke-dasharray", s.dashed ? "5 3" : "none");
-      line.setAttribute("points", s.points.map(function (p) {
-        return ((p[0] - x0) * sx).toFixed(1) + "," + (h - 4 - (p[1] - y0) * sy).toFixed(1);
-      }).join(" "));
-    });
-  }
+      line.setAttribute("points", s.points.map(function (p) { return X(p[0]).toFixed(1) + "," + Y(p[1]).toFixed(1); }).join(" "));
+    }, this);
+    this.marked.textContent = "";
+    (marks || []).forEach(function (m) {
+      element("line", {x1: X(m.x), x2: X(m.x), y1: TOP, y2: TOP + h, stroke: m.color, "stroke-dasharray": m.label ? "2 2" : "none",
+                       class: m.label ? "ddg-chart-stop" : "ddg-chart-now"}, this.marked);
+      if (m.label) {
+        var left = X(m.x) > LEFT + w / 2, t = element("text", {x: X(m.x) + (left ? -3 : 3), y: TOP + 11 + 11 * (m.row || 0), "text-anchor": left ? "end" : "start", "font-size": 10, fill: m.color, class: "ddg-chart-stop"}, this.marked);
+        t.textContent = m.label;
+      }
+    }, this);
+  };
+
+  var LABELS_UP_TO = 40, NEAR = {mouse: 12, pen: 12, touch: 24};  // vertex numbers drawn; how near (px) a pointer grabs
+  var N_MAX = 2000, EPS_RANGE = [-1, 1], ROUNDING = 1024 * Math.pow(2, -52);
+  var SPEEDS = {"slow (30 s)": 30, "normal (10 s)": 10, "fast (3 s)": 3};  // the seconds a whole recorded run plays in
+  function clamp(x, lo, hi) { return Math.min(Math.max(x, lo), hi); }
+  function shown(x, tolerance) { return Math.abs(x) <= tolerance ? "0" : short(x); }  // rounding noise shown as 0
 
   function Lab(root) {
     var self = this, controls = element("div", {class: "ddg-controls"}, root), edits = element("div", {class: "ddg-controls"}, root);
-    var query = new URLSearchParams(window.location.search), lab = window.ddgLab;
+    var query = new URLSearchParams(window.location.search), lab = window.ddgLab, told = [];
+    this.root = root;
     root.querySelectorAll(".ddg-lab-static").forEach(function (e) { e.hidden = true; });
     this.shape = control(controls, "shape", element("select", {}, null));
     Object.keys(SMOOTH).concat(Object.keys(POLYGONS)).forEach(function (s) { element("option", {value: s}, self.shape).textContent = s; });
-    this.n = control(controls, "n", element("input", {type: "number", min: 3, max: 2000, step: 1, value: query.get("n") || root.dataset.n || 12}));
+    this.editedOption = element("option", {value: "edited", disabled: ""}, this.shape);
+    this.editedOption.textContent = "your polygon (edited)";
+    this.n = control(controls, "n", element("input", {type: "number", min: 3, max: N_MAX, step: 1, value: root.dataset.n || 12}));
     this.kind = control(controls, "curvature", element("select", {}, null));
     KINDS.forEach(function (k) { element("option", {value: k}, self.kind).textContent = k; });
     this.arrows = control(controls, "arrows of ∇L", element("input", {type: "checkbox"}, null));
-    this.shape.value = SHORT_NAMES[query.get("lab")] || this.shape.value;
-    if (KINDS.indexOf(query.get("kind")) >= 0) this.kind.value = query.get("kind");
-    this.arrows.checked = query.get("arrows") === "1";
-    var reset = button(controls, "Reset", "the preset again");
     this.draw = button(edits, "Draw", "click or tap in the plane to place vertices, clockwise; press again to finish");
     this.draw.setAttribute("aria-pressed", "false");
     var add = button(edits, "Add vertex", "a vertex in the middle of the edge after the selected vertex (key: Insert or +)");
     var remove = button(edits, "Remove vertex", "remove the selected vertex (key: Delete or -)");
     var undo = button(edits, "Undo", "undo the last change (key: Ctrl+Z)");
+    var reset = button(edits, "Reset", "the preset again");
+    this.full = button(edits, "Full screen", "the lab alone on the screen (key: Escape to leave)");
+    this.full.setAttribute("aria-pressed", "false");
     var inflating = element("div", {class: "ddg-controls"}, root);
     this.method = control(inflating, "inflate", element("select", {}, null));
     element("option", {value: ""}, this.method).textContent = "no";
     Object.keys(INFLATIONS).forEach(function (m) { element("option", {value: m}, self.method).textContent = INFLATIONS[m][0]; });
-    this.method.value = INFLATIONS[query.get("inflate")] ? query.get("inflate") : "";
-    this.eps = control(inflating, "by ε", element("input", {type: "range", min: 0, max: 1, step: 0.01, value: query.get("eps") || 0.2}));
-    this.epsShown = element("output", {}, this.eps.parentNode);
+    this.eps = control(inflating, "by ε", element("input", {type: "range", min: EPS_RANGE[0], max: EPS_RANGE[1], step: 0.01, value: 0.2}));
+    this.epsTyped = element("input", {type: "number", min: EPS_RANGE[0], max: EPS_RANGE[1], step: 0.01, value: 0.2, "aria-label": "ε typed"}, this.eps.parentNode);
+    var stage = element("div", {class: "ddg-lab-stage"}, root), view = element("div", {class: "ddg-lab-view"}, stage);
     this.svg = element("svg", {class: "ddg-panel ddg-lab-svg", width: 360, height: 360, role: "group",
-                               "aria-label": "the polygon: each vertex is a button; arrow keys move it, Page Up and Page Down go to the previous and next vertex, Insert adds a vertex after it, Delete removes it"}, root);
+                               "aria-label": "the polygon: each vertex is a button; arrow keys move it, Page Up and Page Down go to the previous and next vertex, Insert adds a vertex after it, Delete removes it"}, view);
+    this.grid = element("path", {fill: "none", stroke: "currentColor", "stroke-opacity": 0.1, "vector-effect": "non-scaling-stroke", class: "ddg-lab-grid"}, this.svg);
+    this.ghost = element("path", {fill: "none", stroke: "currentColor", "stroke-opacity": 0.35, "stroke-dasharray": "4 4", "vector-effect": "non-scaling-stroke", class: "ddg-lab-ghost"}, this.svg);
     this.region = element("path", {"fill-opacity": 0.25, stroke: "none", class: "ddg-lab-region"}, this.svg);
     this.pieces = element("path", {"fill-opacity": 0.15, "stroke-width": 0.75, "vector-effect": "non-scaling-stroke", class: "ddg-lab-pieces"}, this.svg);
+    this.offset = element("path", {fill: "none", "stroke-width": 1.5, "stroke-dasharray": "6 3", "vector-effect": "non-scaling-stroke", class: "ddg-lab-offset"}, this.svg);
     this.path = element("path", {fill: "none", stroke: "currentColor", "stroke-width": 1.5, "vector-effect": "non-scaling-stroke"}, this.svg);
     this.arrowPath = element("path", {fill: "none", stroke: "#7c3aed", "stroke-width": 1.5, "vector-effect": "non-scaling-stroke", class: "ddg-lab-arrows"}, this.svg);
     this.dots = element("g", {}, this.svg);
-    this.summary = element("p", {class: "ddg-summary", "aria-live": "polite"}, root);
-    this.detail = element("p", {class: "ddg-detail ddg-lab-detail", "aria-live": "polite"}, root);
-    this.inflation = element("p", {class: "ddg-summary ddg-lab-inflation", "aria-live": "polite"}, root);
-    this.chart = element("svg", {class: "ddg-panel ddg-lab-chart", viewBox: "0 0 360 120", width: 360, height: 120, "aria-hidden": "true"}, root);
+    this.hoverMark = element("circle", {fill: "none", stroke: "currentColor", "stroke-width": 1.5, "stroke-dasharray": "3 2", "vector-effect": "non-scaling-stroke", class: "ddg-lab-hover", visibility: "hidden"}, this.svg);
+    this.mark = element("circle", {fill: "none", "stroke-width": 2.5, "vector-effect": "non-scaling-stroke", class: "ddg-lab-mark"}, this.svg);
+    this.numbers = element("g", {class: "ddg-lab-numbers", "aria-hidden": "true", fill: "currentColor", "text-anchor": "middle"}, this.svg);
+    var side = element("div", {class: "ddg-lab-side"}, stage);
+    this.message = element("p", {class: "ddg-lab-message", role: "status"}, side);
+    this.summary = element("p", {class: "ddg-summary", "aria-live": "polite"}, side);
+    this.detail = element("p", {class: "ddg-detail ddg-lab-detail", "aria-live": "polite"}, side);
+    this.inflation = element("p", {class: "ddg-summary ddg-lab-inflation", "aria-live": "polite"}, side);
+    var sharing = element("div", {class: "ddg-controls"}, side);
+    var copyArray = button(sharing, "Copy as numpy", "the vertices as a numpy array, to paste into a notebook");
+    var copyAddress = button(sharing, "Copy address", "an address that opens the lab with this polygon and these settings");
+    this.copied = element("textarea", {class: "ddg-lab-copied", readonly: "", rows: 3, "aria-label": "the text copied", hidden: ""}, side);
+    this.tableBox = element("details", {class: "ddg-lab-table"}, root);
+    element("summary", {}, this.tableBox).textContent = "Every vertex in a table (hover or tap a row to find its vertex)";
+    this.tableScroll = element("div", {class: "ddg-lab-table-scroll"}, this.tableBox);
+    this.table = element("table", {}, this.tableScroll);
+    var head = element("tr", {}, element("thead", {}, this.table));
+    ["i", "x", "y", "ψᵢ (°)", "Aᵢ"].concat(KINDS.map(function (k) { return "k " + k; })).forEach(function (h) { element("th", {scope: "col"}, head).textContent = h; });
+    this.rows = element("tbody", {}, this.table);
+    this.chart = new Chart(root, "vertex i", "kᵢ", [["kᵢ of the polygon", "currentColor", false], ["κ(tᵢ) of the smooth curve", RAMP[2], true]]);
     this.caption = element("p", {class: "ddg-detail ddg-lab-caption"}, root);
     this.history = [];
+    this.version = 0;
     this.selected = 0;
     this.flows = new Flows(this, element("div", {class: "ddg-lab-flows"}, root));
+
+    // the address's settings (a chapter's link, or a shared polygon); what cannot be used is said
+    var name = query.get("lab"), kind = query.get("kind"), method = query.get("inflate"), vs = query.get("v");
+    if (name && !SHORT_NAMES[name]) told.push("the address asks for a preset “" + name + "”, which the lab does not have (" + Object.keys(SHORT_NAMES).join(", ") + ")");
+    this.shape.value = SHORT_NAMES[name] || this.shape.value;
+    if (kind && KINDS.indexOf(kind) < 0) told.push("the address asks for a curvature “" + kind + "”; the lab has " + KINDS.join(", "));
+    if (KINDS.indexOf(kind) >= 0) this.kind.value = kind;
+    if (method && !INFLATIONS[method]) told.push("the address asks to inflate by “" + method + "”; the lab has " + Object.keys(INFLATIONS).join(", "));
+    this.method.value = INFLATIONS[method] ? method : "";
+    this.arrows.checked = query.get("arrows") === "1";
+    if (query.has("n")) told.push(this.setN(query.get("n")));
+    if (query.has("eps")) told.push(this.setEps(query.get("eps")));
+    if (vs !== null) told.push(this.readVertices(vs));
+    this.preset = this.shape.value;
+
     this.shape.addEventListener("change", function () { self.reset(); });
-    this.n.addEventListener("change", function () { if (Number(self.n.value) !== self.presetN) self.reset(); });  // not again on blur
+    this.n.addEventListener("change", function () {
+      var said = self.setN(self.n.value);
+      if (self.presetN !== Number(self.n.value) || said) self.reset(said);  // not again on blur
+    });
     reset.addEventListener("click", function () { self.reset(); });
     this.kind.addEventListener("change", function () { self.update(); });
-    this.arrows.addEventListener("change", function () { self.update(); });
+    this.arrows.addEventListener("change", function () { self.fit(); });
     this.method.addEventListener("change", function () { self.fit(); });
-    this.eps.addEventListener("input", function () { self.fit(); });
+    this.eps.addEventListener("input", function () { self.epsTyped.value = self.eps.value; self.fit(); });
+    this.epsTyped.addEventListener("change", function () { var said = self.setEps(self.epsTyped.value); self.fit(); self.tell(said); });
     this.draw.addEventListener("click", function () { self.toggleDrawing(); });
     add.addEventListener("click", function () { self.add(self.selected); });
     remove.addEventListener("click", function () { self.remove(self.selected); });
     undo.addEventListener("click", function () { self.undo(); });
+    this.full.addEventListener("click", function () { self.fullScreen(!root.classList.contains("ddg-lab-full")); });
+    copyArray.addEventListener("click", function () { self.copy(self.asNumpy(), "the " + self.vertices.length + " vertices as a numpy array: paste them into a notebook cell"); });
+    copyAddress.addEventListener("click", function () { self.copy(self.address(), "the address of this polygon and these settings"); });
+    this.tableBox.addEventListener("toggle", function () { if (self.tableBox.open) self.update(); });
+    this.rows.addEventListener("click", function (event) {
+      var row = event.target.closest("tr");
+      if (row) { self.select(row.index, true); self.update(); }
+    });
+    this.rows.addEventListener("pointerover", function (event) { var row = event.target.closest("tr"); self.hover(row ? row.index : undefined); });
+    this.rows.addEventListener("pointerleave", function () { self.hover(undefined); });
+    this.svg.addEventListener("pointerover", function (event) { self.hover(event.target.index); });
+    this.svg.addEventListener("pointerleave", function () { self.hover(undefined); });
     root.addEventListener("keydown", function (event) {
       if ((event.ctrlKey || event.metaKey) && event.key.toLowerCase() === "z") { event.preventDefault(); self.undo(); }
+      if (event.key === "Escape" && root.classList.contains("ddg-lab-full")) self.fullScreen(false);
     });
     this.dots.addEventListener("keydown", function (event) { self.key(event); });
-    this.svg.addEventListener("pointerdown", function (event) {
-      if (self.drawing) {
-        self.remember();
-        self.vertices.push(self.point(event));
-        self.rebuild();
+    this.svg.addEventListener("pointerdown", function (event) { self.down(event); });
+    this.svg.addEventListener("pointermove", function (event) {
+      if (self.panning !== undefined) {  // a finger away from every vertex scrolls the page (the drawing takes every touch)
+        window.scrollBy(0, self.panning - event.clientY);
+        self.panning = event.clientY;
         return;
       }
-      if (event.target.index === undefined) return;
-      self.remember();
-      self.dragging = event.target.index;
-      self.select(event.target.index);
-      event.target.setPointerCapture(event.pointerId);
-      event.preventDefault();
-    });
-    this.svg.addEventListener("pointermove", function (event) {
       if (self.dragging === undefined) return;
+      if (!self.dragMoved) { self.dragMoved = true; self.remember(); }
       self.vertices[self.dragging] = self.point(event);
-      if (!self.frame) self.frame = requestAnimationFrame(function () { self.frame = 0; self.update(self.dragging); });
+      if (!self.frame) self.frame = requestAnimationFrame(function () { self.frame = 0; if (self.dragging !== undefined) self.update(self.dragging); });
     });
     ["pointerup", "pointercancel"].forEach(function (name) {
       self.svg.addEventListener(name, function () {
         var i = self.dragging;
-        self.dragging = undefined;
+        self.dragging = self.panning = undefined;
         if (i !== undefined) self.update(i);  // where it was let go, on the colour scale of its curvatures
       });
     });
-    this.reset();
+    if (this.shared) this.show(); else this.reset();
+    told = told.filter(Boolean);
+    if (told.length) this.tell(told.join("; ") + ".");
   }
 
-  Lab.prototype.point = function (event) {  // the pointer in data coordinates
-    var p = this.svg.createSVGPoint();
-    p.x = event.clientX; p.y = event.clientY;
-    p = p.matrixTransform(this.svg.getScreenCTM().inverse());
-    return [p.x, -p.y];
+  /* Settings typed or read from the address: used when they are allowed, else clamped, and said. */
+  Lab.prototype.setN = function (typed) {
+    var x = Number(typed), n = clamp(Math.round(x), 3, N_MAX);
+    if (typed === "" || !isFinite(x)) { this.n.value = this.presetN || 12; return "n must be a whole number from 3 to " + N_MAX + (typed === "" ? "" : ", and “" + typed + "” is not one") + ": n stays " + this.n.value; }
+    this.n.value = n;
+    if (n !== x) return "n must be a whole number from 3 to " + N_MAX + ": " + typed + " became " + n;
+    return "";
   };
-  Lab.prototype.remember = function () {  // for Undo: the polygon before a change (which ends the last note)
-    if (!this.drawing) this.note = "";
+  Lab.prototype.setEps = function (typed) {
+    var x = Number(typed), eps = clamp(x, EPS_RANGE[0], EPS_RANGE[1]);
+    if (typed === "" || !isFinite(x)) { this.epsTyped.value = this.eps.value; return "ε must be a number from " + EPS_RANGE[0] + " to " + EPS_RANGE[1] + (typed === "" ? "" : ", and “" + typed + "” is not one") + ": ε stays " + this.eps.value; }
+    this.eps.value = this.epsTyped.value = eps;
+    if (Number(this.eps.value) !== x) return "ε goes from " + EPS_RANGE[0] + " to " + EPS_RANGE[1] + " in steps of 0.01 here: " + typed + " became " + this.eps.value;
+    return "";
+  };
+  Lab.prototype.readVertices = function (text) {  // ?v=x0,y0,x1,y1,...: a shared polygon
+    var xs = text.split(",").map(Number);
+    if (xs.length < 6 || xs.length % 2 || !xs.every(isFinite)) return "the address's vertices (v=…) are not pairs of numbers x,y for 3 vertices or more, so the preset is shown";
+    this.vertices = [];
+    for (var i = 0; i < xs.length; i += 2) this.vertices.push([xs[i], xs[i + 1]]);
+    this.shared = true;
+    return "";
+  };
+  Lab.prototype.show = function () {  // a polygon that is no preset: fitted into view, and called edited
+    this.kappa = null;
+    this.edited();
+    this.fit();
+  };
+  Lab.prototype.edited = function () {
+    this.shape.value = "edited";
+    this.n.value = this.vertices.length;
+    this.n.disabled = true;
+  };
+  Lab.prototype.tell = function (text) { this.message.textContent = text; };  // refusals, clamps, what was copied
+
+  Lab.prototype.down = function (event) {
+    if (this.drawing) {
+      this.remember();
+      this.vertices.push(this.point(event));
+      this.rebuild();
+      this.tell("Vertex " + (this.vertices.length - 1) + " placed" + (this.vertices.length < 3 ? ": place " + (3 - this.vertices.length) + " more at least." : "; press Done to finish."));
+      return;
+    }
+    var i = this.nearest(event);
+    if (i === undefined) {
+      if (event.pointerType === "touch") { this.panning = event.clientY; this.svg.setPointerCapture(event.pointerId); }
+      return;
+    }
+    this.dragging = i;  // remembered for Undo when it first moves: a tap only selects
+    this.dragMoved = false;
+    this.select(i, true);
+    this.svg.setPointerCapture(event.pointerId);
+    event.preventDefault();
+  };
+  Lab.prototype.nearest = function (event) {  // the vertex nearest the pointer, if it is near enough to mean it
+    var scale = this.svg.getScreenCTM().a, p = this.point(event, true), best, far = (NEAR[event.pointerType] || 12) / scale;
+    this.vertices.forEach(function (v, i) {
+      var d = Math.hypot(v[0] - p[0], v[1] - p[1]);
+      if (d <= far) { far = d; best = i; }
+    });
+    return best;
+  };
+  Lab.prototype.point = function (event, exact) {  // the pointer in data coordinates, to a thousandth of the view
+    var m = this.svg.getScreenCTM(), x = (event.clientX - m.e) / m.a, y = (event.clientY - m.f) / m.d;
+    if (exact) return [x, -y];
+    var digits = Math.max(0, 3 - Math.floor(Math.log10(this.size))), step = Math.pow(10, -digits);
+    return [x, -y].map(function (z) { return Number((Math.round(z / step) * step).toFixed(digits)) || 0; });
+  };
+  Lab.prototype.remember = function () {  // for Undo: the polygon before a change (which ends the last message)
+    this.tell("");
+    this.version++;  // the flows from the polygon before are out of date
     this.history.push(this.vertices.map(function (p) { return p.slice(); }));
     if (this.history.length > 200) this.history.shift();
+    if (!this.resetting) this.edited();
   };
   Lab.prototype.undo = function () {
-    if (!this.history.length) { this.say("Nothing to undo."); return; }
+    if (!this.history.length) { this.tell("Nothing to undo."); return; }
     this.vertices = this.history.pop();
+    if (this.drawing && this.history.length < this.drawFrom) this.toggleDrawing(true);  // back before Draw: drawing ends
+    this.version++;
+    this.edited();
     this.rebuild();
   };
-  Lab.prototype.say = function (text) { this.note = text; this.update(); };
+  Lab.prototype.say = function (text) { this.tell(text); };
 
-  Lab.prototype.reset = function () {  // the preset: n vertices on the smooth curve at t_k, or chapter 5's polygon
-    var name = this.shape.value, smooth = SMOOTH[name], n = Math.min(Math.max(Math.round(Number(this.n.value)) || 12, 3), 2000);
+  Lab.prototype.reset = function (said) {  // the preset: n vertices on the smooth curve at t_k, or chapter 5's polygon
+    var name = this.shape.value === "edited" ? this.preset : this.shape.value, smooth = SMOOTH[name];
+    var n = clamp(Math.round(Number(this.n.value)) || 12, 3, N_MAX);
+    this.resetting = true;
     if (this.vertices) this.remember();
-    this.n.value = this.presetN = n;
+    this.resetting = false;
+    this.shape.value = this.preset = name;
+    this.vertices = smooth ? null : POLYGONS[name].map(function (p) { return p.slice(); });
+    this.n.value = smooth ? n : this.vertices.length;
+    this.presetN = Number(this.n.value);
     this.n.disabled = !smooth;
     var t = smooth ? Array.from({length: n}, function (_, k) { return 2 * Math.PI * (k + smooth.shift) / n; }) : [];
-    this.vertices = smooth ? t.map(function (s) { return smooth.at(s)[0]; }) : POLYGONS[name].map(function (p) { return p.slice(); });
+    if (smooth) this.vertices = t.map(function (s) { return smooth.at(s)[0]; });
     this.kappa = smooth ? t.map(function (s) { return kappa(s, smooth.at); }) : null;  // kappa(t_i), for the chart
-    this.size = frame(this.svg, smooth ? Array.from({length: 96}, function (_, k) { return smooth.at(k * Math.PI / 48)[0]; }) : this.vertices);
     this.selected = 0;
     if (this.drawing) this.toggleDrawing();
-    if (this.method.value) this.fit(); else this.rebuild();
+    this.fit();
+    if (said) this.tell(said);
   };
 
-  Lab.prototype.fit = function () {  // the view of the polygon and, when it is inflated, of its pieces
-    var points = this.vertices.slice(), eps = Number(this.eps.value), curve = null;
+  /* The view: the polygon (for a preset, its smooth curve), its arrows and its inflated pieces. The
+   * arrows' scale is a fifth of the polygon's extent, and stays so while a vertex is dragged. */
+  Lab.prototype.fit = function () {
+    var points = this.vertices.slice(), eps = Number(this.eps.value), curve = null, smooth = SMOOTH[this.shape.value];
     try { curve = new window.ddgLab.DiscreteCurve(this.vertices); } catch (e) { /* drawn as it is */ }
-    if (curve && this.method.value && eps > 0 && curve.signed_area > 0) {
-      var parts = pieces(curve, eps, this.method.value === "bisector" ? "offset" : this.method.value);  // a fill lies in its kite
-      parts.rectangles.concat(parts.corners).forEach(function (r) { points = points.concat(r); });
+    if (smooth && this.kappa) points = points.concat(Array.from({length: 96}, function (_, k) { return smooth.at(k * Math.PI / 48)[0]; }));
+    var b = points.length ? bounds(points) : [-1, -1, 1, 1];
+    this.arrowScale = 0.2 * Math.max(b[2] - b[0], b[3] - b[1], 1e-9);
+    if (curve && this.arrows.checked) {
+      var g = curve.length_gradient(), top = Math.max.apply(null, g.map(function (x) { return Math.hypot(x[0], x[1]); })) || 1, s = this.arrowScale / top;
+      points = points.concat(g.map(function (x, i) { return [curve.vertices[i][0] + s * x[0], curve.vertices[i][1] + s * x[1]]; }));
+    }
+    if (curve && this.method.value && eps !== 0 && curve.signed_area > 0) {
+      try {
+        if (eps > 0) {
+          var parts = pieces(curve, eps, this.method.value === "bisector" ? "offset" : this.method.value);  // a fill lies in its kite
+          parts.rectangles.concat(parts.corners).forEach(function (r) { points = points.concat(r); });
+        } else if (this.method.value === "offset") points = points.concat(offsetPolygon(curve, eps));
+      } catch (e) { /* said where it is drawn */ }
     }
     if (points.length) this.size = frame(this.svg, points);
+    this.drawGrid();
     this.rebuild();
+  };
+  Lab.prototype.drawGrid = function () {  // light lines at round coordinates, behind everything
+    var box = this.svg.getAttribute("viewBox").split(" ").map(Number), step = ticks(0, box[2], 8)[1] || 1, d = [];
+    for (var x = Math.ceil(box[0] / step) * step; x <= box[0] + box[2]; x += step) d.push("M" + x + "," + box[1] + "V" + (box[1] + box[3]));
+    for (var y = Math.ceil(box[1] / step) * step; y <= box[1] + box[3]; y += step) d.push("M" + box[0] + "," + y + "H" + (box[0] + box[2]));
+    this.grid.setAttribute("d", d.join(""));
+    this.gridStep = step;
   };
 
   Lab.prototype.rebuild = function () {  // new handles: after a preset, an added or removed vertex, drawing, undo
@@ -302,25 +505,43 @@
     if (this.kappa && this.kappa.length !== n) this.kappa = null;  // no longer the smooth curve's sample
     this.selected = Math.min(this.selected, Math.max(n - 1, 0));
     this.dots.textContent = "";
+    this.numbers.textContent = "";
+    this.radius = this.size * Math.max(0.006, Math.min(0.015, 0.5 / n));
     this.circles = this.vertices.map(function (v, i) {
-      var c = element("circle", {r: this.size * Math.max(0.004, Math.min(0.015, 0.5 / n)), tabindex: i === self.selected ? 0 : -1,
-                                 role: "button", class: "ddg-handle"}, self.dots);
+      var c = element("circle", {r: this.radius, tabindex: i === self.selected ? 0 : -1, role: "button", class: "ddg-handle"}, self.dots);
       c.index = i;
       return c;
     }, this);
+    this.labels = n <= LABELS_UP_TO ? this.vertices.map(function (v, i) {
+      var t = element("text", {"font-size": this.size * 0.038, "dominant-baseline": "central"}, self.numbers);
+      t.textContent = i;
+      return t;
+    }, this) : [];
+    this.mark.setAttribute("r", 2 * this.radius);
+    this.hoverMark.setAttribute("r", 2.4 * this.radius);
+    this.rows.textContent = "";
+    this.cells = null;
     if (focused && n) this.circles[this.selected].focus();  // the keys keep working after Undo
     this.update();
   };
 
-  Lab.prototype.select = function (i) {
+  Lab.prototype.select = function (i, quiet) {
     if (this.circles[this.selected]) this.circles[this.selected].setAttribute("tabindex", -1);
     this.selected = i;
     this.circles[i].setAttribute("tabindex", 0);
-    this.circles[i].focus();
+    this.circles[i].focus({preventScroll: !!quiet});
+  };
+  Lab.prototype.hover = function (i) {  // a vertex and its row, found from either
+    var v = this.vertices[i], old = this.hovered;
+    this.hovered = v ? i : undefined;
+    this.hoverMark.setAttribute("visibility", v ? "visible" : "hidden");
+    if (v) { this.hoverMark.setAttribute("cx", v[0]); this.hoverMark.setAttribute("cy", -v[1]); }
+    if (this.cells && this.cells[old]) this.cells[old].row.classList.remove("ddg-lab-row-hover");
+    if (this.cells && v && this.cells[i]) this.cells[i].row.classList.add("ddg-lab-row-hover");
   };
   Lab.prototype.add = function (i) {  // a vertex in the middle of the edge from v_i to v_{i+1}
     var v = this.vertices, n = v.length;
-    if (n < 2) { this.say("Place two vertices first."); return; }
+    if (n < 2) { this.tell("Place two vertices first: a new vertex goes in the middle of an edge."); return; }
     this.remember();
     var p = v[i], q = v[(i + 1) % n];
     v.splice(i + 1, 0, [(p[0] + q[0]) / 2, (p[1] + q[1]) / 2]);
@@ -329,31 +550,78 @@
     this.circles[i + 1].focus();
   };
   Lab.prototype.remove = function (i) {
-    if (this.vertices.length <= 3) { this.say("A closed polygon needs at least 3 vertices: vertex " + i + " stays."); return; }
+    if (this.vertices.length <= 3) { this.tell("A closed polygon needs at least 3 vertices: vertex " + i + " stays. Add one first, or press Draw for a new polygon."); return; }
     this.remember();
     this.vertices.splice(i, 1);
     this.selected = i % this.vertices.length;
     this.rebuild();
     this.circles[this.selected].focus();
   };
-  Lab.prototype.toggleDrawing = function () {
+  Lab.prototype.toggleDrawing = function (undone) {
+    if (undone) {  // Undo went back to the polygon from before Draw
+      this.drawing = false;
+      this.draw.setAttribute("aria-pressed", "false");
+      this.draw.textContent = "Draw";
+      this.svg.classList.remove("ddg-drawing");
+      this.ghost.setAttribute("d", "");
+      return;
+    }
+    if (this.drawing && this.vertices.length < 3) {
+      this.tell("A polygon needs at least 3 vertices, and " + this.vertices.length + (this.vertices.length === 1 ? " is" : " are") + " placed: place " + (3 - this.vertices.length) + " more, or press Undo to go back.");
+      return;
+    }
     this.drawing = !this.drawing;
     this.draw.setAttribute("aria-pressed", String(this.drawing));
     this.draw.textContent = this.drawing ? "Done" : "Draw";
-    this.svg.classList.toggle("ddg-drawing", this.drawing);  // a finger draws instead of scrolling
+    this.svg.classList.toggle("ddg-drawing", this.drawing);
     if (this.drawing) {
+      this.ghost.setAttribute("d", pathOf(this.vertices, true));  // the polygon before, dashed, for scale
       this.remember();
+      this.drawFrom = this.history.length;
       this.vertices = [];
-      this.note = "Click or tap in the plane to place the vertices, clockwise; press Done to finish.";
       this.rebuild();
+      this.tell("Click or tap in the plane to place the vertices, clockwise; press Done to finish.");
     } else {
-      this.note = "";
-      this.update();
+      this.ghost.setAttribute("d", "");
+      this.tell("");
+      this.fit();
     }
+  };
+  Lab.prototype.fullScreen = function (on) {
+    this.root.classList.toggle("ddg-lab-full", on);
+    document.documentElement.classList.toggle("ddg-lab-full-page", on);
+    this.full.setAttribute("aria-pressed", String(on));
+    this.full.textContent = on ? "Leave full screen" : "Full screen";
+    if (!on) this.root.scrollIntoView({block: "start"});
   };
   Lab.prototype.move = function (i, p) {
     this.vertices[i] = p;
     this.update(i);
+  };
+
+  Lab.prototype.asNumpy = function () {  // every coordinate as JavaScript writes it: the shortest that reads back exactly
+    return "np.array([" + this.vertices.map(function (p) { return "[" + String(p[0]) + ", " + String(p[1]) + "]"; }).join(", ") + "])";
+  };
+  Lab.prototype.address = function () {
+    var q = [];
+    if (this.shape.value === "edited") q.push("v=" + this.vertices.map(function (p) { return String(p[0]) + "," + String(p[1]); }).join(","));
+    else {
+      var name = Object.keys(SHORT_NAMES).filter(function (k) { return SHORT_NAMES[k] === this.shape.value; }, this)[0];
+      q.push("lab=" + name);
+      if (!this.n.disabled) q.push("n=" + this.n.value);
+    }
+    q.push("kind=" + this.kind.value);
+    if (this.arrows.checked) q.push("arrows=1");
+    if (this.method.value) q.push("inflate=" + this.method.value, "eps=" + this.eps.value);
+    return window.location.origin + window.location.pathname + "?" + q.join("&") + "#lab";
+  };
+  Lab.prototype.copy = function (text, what) {
+    var self = this, box = this.copied;
+    box.hidden = false;
+    box.value = text;
+    var fallback = function () { box.select(); self.tell("Your browser did not let the page copy: the text is selected below; copy it (Ctrl+C, or a long press on a phone)."); };
+    if (!navigator.clipboard) { fallback(); return; }
+    navigator.clipboard.writeText(text).then(function () { self.tell("Copied " + what + "."); }, fallback);
   };
 
   Lab.prototype.key = function (event) {
@@ -371,17 +639,29 @@
     this.move(i, [v[0] + moves[event.key][0], v[1] + moves[event.key][1]]);
   };
 
+  /* The sizes below which a value is rounding noise for this polygon: a turn (radians), a curvature
+   * and |grad L|, an area. Coordinates carry a relative error of 2^-52; a turn between edges of
+   * length h at coordinates of size c inherits about 2^-52 c / h; we allow 1024 times that. */
+  function noise(curve) {
+    var c = 0, h = Infinity, A = Infinity;
+    curve.vertices.forEach(function (p, i) { c = Math.max(c, Math.abs(p[0]), Math.abs(p[1])); h = Math.min(h, curve.edge_lengths[i]); A = Math.min(A, curve.dual_lengths[i]); });
+    var turn = ROUNDING * Math.max(c / h, 1);
+    return {turn: turn, k: turn / A, area: ROUNDING * Math.max(c, curve.length) * curve.length};
+  }
+
   /* Draw the polygon and say what ddg's formulas give. After vertex `moved` moved, only it and its
    * neighbours have a new place or curvature; the colours may all change (they are scaled by the
    * largest |k|), so each attribute is written only where it changed. */
   Lab.prototype.update = function (moved) {
     var v = this.vertices, n = v.length, kind = this.kind.value, lab = window.ddgLab, curve = null, k = null, parts = [], s = this.summary;
-    var ks = this.ks = {}, gradient = null;  // each curvature and the gradient of length, once for everything
+    var ks = this.ks = {}, gradient = null, tol = null;  // each curvature and the gradient of length, once for everything
     // shown (lab.ks: the tests read the circle curvature there)
+    if (this.flows.runs && this.flows.version !== this.version) this.flows.clear("The polygon changed after these flows ran: press Flow this shape or Play to run them from it.");
     this.path.setAttribute("d", pathOf(v, !this.drawing));
     ["turningNumber", "length", "signedArea"].forEach(function (name) { delete s.dataset[name]; });
-    try { curve = new lab.DiscreteCurve(v); } catch (e) { parts.push("Not a polygon the lecture allows: " + e.message + "."); }
+    try { curve = new lab.DiscreteCurve(v); } catch (e) { parts.push(this.drawing ? "Drawing: " + n + " vertices placed." : "Not a polygon the lecture allows: " + e.message + "."); }
     if (curve) {
+      tol = this.tolerance = noise(curve);
       KINDS.forEach(function (name) {
         try { ks[name] = name === "circle" ? lab.circle_curvature(curve) : curve.curvature(name); } catch (e) { ks[name] = e; }
       });
@@ -394,51 +674,140 @@
       } catch (e) { parts.push("No turning number (" + e.message + "),"); }
       s.dataset.length = curve.length;
       s.dataset.signedArea = curve.signed_area;
-      parts.push("length " + short(curve.length) + ", signed area " + short(curve.signed_area) + ".");
+      parts.push("length " + short(curve.length) + ", signed area " + shown(curve.signed_area, tol.area) + ".");
     }
-    var top = k ? Math.max.apply(null, k.map(Math.abs)) || 1 : 1;
+    var top = k ? Math.max.apply(null, k.map(Math.abs)) : 0;
+    top = k && top > tol.k ? top : 1;
     if (this.dragging === undefined) this.dragTop = 0;  // a drag keeps its first colour scale: were it to follow the
     else top = this.dragTop = this.dragTop || top;      // dragged vertex's |k|, every vertex would be restyled each frame
+    var near = function (i) { return moved === undefined || (i - moved + n + 1) % n <= 2; };  // moved or a neighbour
+    var N = curve && this.labels.length ? curve.bisector_normals : null, off = 0.045 * this.size;
     this.circles.forEach(function (c, i) {
-      var fill = k ? LEVELS[Math.round(64 * Math.min(Math.max(0.5 + k[i] / (2 * top), 0), 1))] : RAMP[1];
+      var fill = k ? LEVELS[Math.round(64 * clamp(0.5 + (Math.abs(k[i]) <= tol.k ? 0 : k[i]) / (2 * top), 0, 1))] : RAMP[1];
       if (c.fill !== fill) c.setAttribute("fill", c.fill = fill);
-      if (moved !== undefined && (i - moved + n + 1) % n > 2) return;  // not moved and not a neighbour
+      if (!near(i)) return;
       c.setAttribute("cx", v[i][0]);
       c.setAttribute("cy", -v[i][1]);
       c.setAttribute("aria-label", "vertex " + i + " at (" + short(v[i][0]) + ", " + short(v[i][1]) + ")" +
-                     (k ? ", " + kind + " curvature " + short(k[i]) : ""));
-    });
+                     (k ? ", " + kind + " curvature " + shown(k[i], tol.k) : ""));
+      var label = this.labels[i];
+      if (label) {  // outside the polygon, along the normal at the vertex (up and right while drawing)
+        var d = N && isFinite(N[i][0]) ? N[i] : [0.7, 0.7];
+        label.setAttribute("x", v[i][0] + off * d[0]);
+        label.setAttribute("y", -(v[i][1] + off * d[1]));
+      }
+    }, this);
+    var sel = v[this.selected];
+    this.mark.setAttribute("visibility", sel ? "visible" : "hidden");
+    if (sel) { this.mark.setAttribute("cx", sel[0]); this.mark.setAttribute("cy", -sel[1]); }
+    if (this.hovered !== undefined) this.hover(this.hovered < n ? this.hovered : undefined);
     s.textContent = parts.join(" ");
     this.arrowPath.setAttribute("d", gradient && this.arrows.checked ? this.arrowsPath(gradient) : "");
     this.inflate(this.drawing ? null : curve, ks[kind]);
     this.describe(curve, ks, gradient);
+    this.tabulate(curve, ks, moved);
   };
 
+  /* The table of every vertex (while it is open): after a drag, only the moved vertex's rows. */
+  Lab.prototype.tabulate = function (curve, ks, moved) {
+    if (!this.tableBox.open) return;
+    var n = this.vertices.length, self = this, tol = this.tolerance;
+    if (!this.cells || this.cells.length !== n) {
+      this.rows.textContent = "";
+      this.cells = this.vertices.map(function (_, i) {
+        var row = element("tr", {}, self.rows), cells = [];
+        row.index = i;
+        for (var j = 0; j < 5 + KINDS.length; j++) cells.push(element(j ? "td" : "th", j ? {} : {scope: "row"}, row));
+        cells[0].textContent = i;
+        return {row: row, cells: cells};
+      });
+      moved = undefined;
+    }
+    this.cells.forEach(function (entry, i) {
+      entry.row.classList.toggle("ddg-lab-row-selected", i === self.selected);
+      if (moved !== undefined && (i - moved + n + 1) % n > 2) return;
+      var c = entry.cells, p = self.vertices[i];
+      c[1].textContent = short(p[0]);
+      c[2].textContent = short(p[1]);
+      if (!curve) { for (var j = 3; j < c.length; j++) c[j].textContent = "–"; return; }
+      var psi = curve.turning_angles[i];
+      c[3].textContent = curve.reversals.indexOf(i) >= 0 ? "±180" : shown(psi * 180 / Math.PI, tol.turn * 180 / Math.PI);
+      c[4].textContent = short(curve.dual_lengths[i]);
+      KINDS.forEach(function (name, j) { c[5 + j].textContent = Array.isArray(ks[name]) ? shown(ks[name][i], tol.k) : "undefined"; });
+    });
+    var row = this.cells[this.selected];  // the selected vertex's row in view, inside the table's own scroll box
+    if (row && moved === undefined) {
+      var box = this.tableScroll, top = row.row.offsetTop, head = this.table.tHead.offsetHeight;
+      if (top - head < box.scrollTop || top + row.row.offsetHeight > box.scrollTop + box.clientHeight) box.scrollTop = top - head - box.clientHeight / 3;
+    }
+  };
+
+  /* The offset polygon's vertices, v_i + eps (N_{i-1/2} + tan(psi_i/2) T_{i-1/2}): where its moved
+   * edges meet (ddg's DiscreteCurve.inflate(eps, "offset"), here for eps of either sign). */
+  function offsetPolygon(curve, eps) {
+    var N = curve.normals, T = curve.tangents, n = curve.vertices.length;
+    if (curve.reversals.length) throw new Error("no offset corner at vertex " + curve.reversals[0] + ": the curve turns straight back there");
+    return curve.vertices.map(function (p, i) {
+      var a = N[(i + n - 1) % n], t = T[(i + n - 1) % n], s = curve.tan_half_psi[i];
+      return [p[0] + eps * (a[0] + s * t[0]), p[1] + eps * (a[1] + s * t[1])];
+    });
+  }
+  /* The reach of the offsets on each side: moved by eps, the edge from v_i keeps the length
+   * |e_{i+1/2}| + eps (tan(psi_i/2) + tan(psi_{i+1}/2)); the first edge to shrink to a point, inward
+   * (eps < 0) and outward (eps > 0): {inward: [r, i], outward: [r, i]}. */
+  function reach(curve) {
+    var t = curve.tan_half_psi, n = t.length, out = {inward: [Infinity, -1], outward: [Infinity, -1]};
+    curve.edge_lengths.forEach(function (l, i) {
+      var s = t[i] + t[(i + 1) % n], side = s > 0 ? "inward" : "outward", r = l / Math.abs(s);
+      if (s !== 0 && r < out[side][0]) out[side] = [r, i];
+    });
+    return out;
+  }
+
   /* The polygon inflated by eps: its pieces and the formula's area at once; the region, their union,
-   * measured when the hand stops (a drag asks for it again at every frame). */
+   * measured when the hand stops (a drag asks for it again at every frame). For eps < 0, the offset
+   * polygon moved inward, its signed area, and its reach. */
   Lab.prototype.inflate = function (curve, k) {
     var method = this.method.value, eps = Number(this.eps.value), p = this.inflation, self = this, formula;
-    this.epsShown.textContent = eps.toFixed(2);
-    this.eps.disabled = !method;
+    this.epsTyped.value = eps;
+    this.eps.disabled = this.epsTyped.disabled = !method;
     clearTimeout(this.measuring);
     this.region.setAttribute("d", "");
     this.pieces.setAttribute("d", "");
-    delete p.dataset.formula; delete p.dataset.measured;
+    this.offset.setAttribute("d", "");
+    delete p.dataset.formula; delete p.dataset.measured; delete p.dataset.offsetArea; delete p.dataset.reach;
     p.textContent = "";
     if (!method || !curve) return;
-    var name = INFLATIONS[method][0], color = INFLATIONS[method][1];
+    var name = INFLATIONS[method][0], color = INFLATIONS[method][1], tol = this.tolerance;
     try {  // the formulas are for a simple clockwise polygon (crossings looked for where the region is measured: O(n^2))
       var turns = curve.turning_number, cross = curve.vertices.length <= MEASURED_UP_TO && crossing(curve.vertices);
       if (turns === -1) throw new Error("the polygon runs counter-clockwise, so its normals point inward and inflating it would erode it; reverse it (draw it clockwise)");
       if (turns !== 1) throw new Error("the formulas are for a simple clockwise polygon, and this one has turning number " + turns);
       if (cross) throw new Error("the formulas are for a simple polygon, and the edges from vertex " + cross[0] + " and from vertex " + cross[1] + " meet");
+      if (eps < 0 && method !== "offset") throw new Error("ε < 0 moves the edges inward, and the " + name + " only grows the region; for ε < 0 choose the offset with kites, whose edges move either way");
       if (method === "bisector" && !Array.isArray(k)) throw new Error("no " + this.kind.value + " curvature here");
-      formula = method !== "bisector" ? curve.inflated_area(eps, method) : curve.signed_area + eps * curve.length +
-        eps * eps / 2 * k.reduce(function (sum, x, i) { return sum + curve.dual_lengths[i] * x; }, 0);  // <k, 1> = sum A_i k_i
+      formula = method !== "bisector" ? (eps < 0 ? curve.signed_area + eps * curve.length + eps * eps * curve.tan_half_psi.reduce(function (a, b) { return a + b; }, 0) : curve.inflated_area(eps, method)) :
+        curve.signed_area + eps * curve.length + eps * eps / 2 * k.reduce(function (total, x, i) { return total + curve.dual_lengths[i] * x; }, 0);  // <k, 1> = sum A_i k_i
     } catch (e) { p.textContent = "No inflation: " + e.message + "."; return; }
+    p.dataset.formula = formula;
+    var reaches = reach(curve);
+    if (eps < 0) {  // the offset moved inward: its polygon, its signed area (the formula's, for every eps), its reach
+      var moved = offsetPolygon(curve, eps), area = -window.ddgLab.signed_area_ccw(moved), r = reaches.inward;
+      p.dataset.offsetArea = area;
+      p.dataset.reach = r[0];
+      this.offset.setAttribute("stroke", color);
+      this.offset.setAttribute("d", pathOf(moved, true));
+      p.textContent = "Moved inward by ε = " + eps.toFixed(2) + " (dashed): the edges move along −N, and the formula A₀ + εL + ε² Σ tan(ψᵢ/2) gives " +
+        short(formula) + ", the signed area of the dashed polygon (" + short(area) + "). " +
+        (r[1] < 0 ? "No edge shrinks when this polygon moves inward." :
+         "The reach inward is " + short(r[0]) + ": at ε = −" + short(r[0]) + " the edge from vertex " + r[1] + " shrinks to a point" +
+         (-eps > r[0] ? "; ε is past it, so that edge runs backwards and the dashed polygon has a swallowtail, a loop the signed area counts negatively: it is no longer the area of the points at least |ε| inside." :
+          "; until then the dashed polygon is the set of points at least |ε| inside, if no two far parts of the polygon come within 2|ε| of each other."));
+      return;
+    }
     var parts = eps > 0 ? pieces(curve, eps, method, k) : {rectangles: [], corners: []}, said = "Inflated by ε = " + eps.toFixed(2) + ", " + name + ": the formula " +
       INFLATIONS[method][2] + (method === "bisector" ? " (k: " + this.kind.value + ")" : "") + " gives " + short(formula);
-    p.dataset.formula = formula;
+    if (method === "offset" && eps > reaches.outward[0]) said += " (past the outward reach " + short(reaches.outward[0]) + ", where the edge from vertex " + reaches.outward[1] + " shrinks to a point)";
     this.pieces.setAttribute("fill", color);
     this.pieces.setAttribute("stroke", color);
     this.pieces.setAttribute("d", parts.rectangles.concat(parts.corners).map(function (r) { return pathOf(r, true); }).join(""));
@@ -455,14 +824,15 @@
       self.region.setAttribute("d", region.map(function (polygon) {
         return polygon.map(function (ring) { return pathOf(ring.slice(0, -1), true); }).join("");
       }).join(""));
+      var difference = formula - area;
       p.textContent = said + "; the region (shaded), the polygon with these pieces united, measures " + short(area) +
-        ": formula − region = " + Number((formula - area).toPrecision(2)) + ".";
+        ": formula − region = " + (Math.abs(difference) <= tol.area + ROUNDING * Math.abs(area) ? "0" : Number(difference.toPrecision(2))) + ".";
     }, this.dragging !== undefined ? 150 : 0);
   };
 
-  Lab.prototype.arrowsPath = function (g) {  // grad L at each vertex, the longest 0.2 of the view
+  Lab.prototype.arrowsPath = function (g) {  // grad L at each vertex, the longest a fifth of the polygon's extent
     var v = this.vertices, top = Math.max.apply(null, g.map(function (x) { return Math.hypot(x[0], x[1]); })) || 1;
-    var scale = 0.2 * this.size / top, head = 0.02 * this.size;
+    var scale = this.arrowScale / top, head = 0.02 * this.size;
     return g.map(function (x, i) {
       var a = v[i], b = [a[0] + scale * x[0], a[1] + scale * x[1]], len = Math.hypot(x[0], x[1]) * scale;
       if (!(len > 0)) return "M" + a[0] + "," + -a[1] + "L" + a[0] + "," + -a[1];  // a straight vertex: nothing to draw
@@ -475,65 +845,91 @@
 
   /* The selected vertex in words, and the chosen curvature along the polygon beside the smooth curve's. */
   Lab.prototype.describe = function (curve, ks, gradient) {
-    var i = this.selected, words = [], kind = this.kind.value, k = Array.isArray(ks[kind]) ? ks[kind] : null, smooth = this.kappa;
-    if (this.note) words.push(this.note);
+    var i = this.selected, words = [], kind = this.kind.value, k = Array.isArray(ks[kind]) ? ks[kind] : null, smooth = this.kappa, tol = this.tolerance;
     if (curve) {
-      var psi = curve.turning_angles[i], g = gradient[i];
-      words.push("Vertex " + i + ": ψ = " + short(psi * 180 / Math.PI) + "° (" + (psi > 0 ? "turning clockwise" : psi < 0 ? "turning counter-clockwise" : "straight") + "); k: " +
-                 KINDS.map(function (name) {
-                   return name + " " + (Array.isArray(ks[name]) ? short(ks[name][i]) : "undefined");
-                 }).join(", ") + "; |\u2060∇L\u2060| = " + short(Math.hypot(g[0], g[1])) + ".");
+      var psi = curve.turning_angles[i], g = gradient[i], straight = Math.abs(psi) <= tol.turn, back = curve.reversals.indexOf(i) >= 0;
+      var v = this.vertices[i];
+      words.push("Vertex " + i + " at (" + short(v[0]) + ", " + short(v[1]) + "): ψ = " +
+                 (back ? "±180° (its edges point in exactly opposite directions, so a turn of +180° and one of −180° are equally right)" :
+                  shown(psi * 180 / Math.PI, tol.turn * 180 / Math.PI) + "° (" + (straight ? "straight, to rounding" : psi > 0 ? "turning clockwise" : "turning counter-clockwise") + ")") +
+                 "; k: " + KINDS.map(function (name) {
+                   return name + " " + (Array.isArray(ks[name]) ? shown(ks[name][i], tol.k) : "undefined");
+                 }).join(", ") + "; |\u2060∇L\u2060| = " + shown(Math.hypot(g[0], g[1]), tol.k) + ".");
     }
     this.detail.textContent = words.join(" ");
     var series = [], values = [];
     if (k) { series.push({color: "currentColor", points: k.map(function (x, j) { return [j, x]; })}); values = values.concat(k); }
     if (smooth) { series.push({color: RAMP[2], dashed: true, points: smooth.map(function (x, j) { return [j, x]; })}); values = values.concat(smooth); }
     var lo = Math.min(0, Math.min.apply(null, values)), hi = Math.max(0, Math.max.apply(null, values));
-    plot(this.chart, series, 0, Math.max(this.vertices.length - 1, 1), lo, hi);
+    this.chart.draw(series, 0, Math.max(this.vertices.length - 1, 1), lo, hi, k ? [{x: i, color: "currentColor"}] : [],
+                    "the " + kind + " curvature at each vertex" + (smooth ? ", and the smooth curve's" : ""));
     this.caption.textContent = k ? "Above: the " + kind + " curvature k_i (solid) at vertex 0 to " + (k.length - 1) +
       (smooth ? ", and the smooth curve's curvature κ(t_i) where it was sampled (dashed)" : "") +
-      "; from " + short(lo) + " to " + short(hi) + "." : "";
+      "; from " + short(lo) + " to " + short(hi) + "; the upright line marks the selected vertex." : "";
   };
 
   /* The three flows side by side, from the lab's polygon: ddg.flow.flow's explicit steps (ddgLab.flow_step),
-   * the one furthest behind in time first, so all three show the same moment. */
+   * the one furthest behind in time first, so all three reach the same moments. Computing runs ahead
+   * while playing; a player shows the recorded run at time `time`, at a chosen speed, or where the
+   * time slider puts it. */
+  var FRAMES = 240;  // snapshots kept per flow: every step, thinned to every other when there are more
   function Flows(lab, root) {
-    var self = this, controls = element("div", {class: "ddg-controls"}, root);
+    var self = this, controls = element("div", {class: "ddg-controls"}, root), player = element("div", {class: "ddg-controls"}, root);
     this.lab = lab;
     this.start = button(controls, "Flow this shape", "run the three flows from the polygon above");
-    this.play = button(controls, "Play", "play or pause the flows");
+    this.play = button(controls, "Play", "play or pause the flows (a long run stops computing while paused)");
     this.play.setAttribute("aria-pressed", "false");
-    this.stepButton = button(controls, "Step", "one step of the flow furthest behind");
+    this.stepButton = button(controls, "Step", "to the next step of the flow furthest behind");
+    this.speed = control(controls, "speed", element("select", {}, null));
+    Object.keys(SPEEDS).forEach(function (s) { element("option", {value: SPEEDS[s]}, self.speed).textContent = s; });
+    this.speed.value = 10;
+    this.slider = control(player, "time t", element("input", {type: "range", min: 0, max: 1000, step: 1, value: 0, disabled: ""}, null));
+    this.slider.parentNode.classList.add("ddg-lab-time");
+    this.shownTime = element("output", {}, this.slider.parentNode);
     this.panels = element("div", {class: "ddg-lab-panels"}, root);
-    this.chart = element("svg", {class: "ddg-panel ddg-lab-chart", viewBox: "0 0 360 120", width: 360, height: 120, "aria-hidden": "true"}, root);
+    this.chart = new Chart(root, "time t", "L/L(0), A/A(0)",
+                           window.ddgLab.CURVATURES.map(function (k) { return [k, FLOW_COLORS[k], false]; }).concat([["length", "currentColor", false], ["area", "currentColor", true]]));
     this.caption = element("p", {class: "ddg-detail"}, root);
-    this.chart.style.display = "none";  // until a flow starts
+    this.chart.svg.style.display = "none";  // until a flow starts
     this.status = element("p", {class: "ddg-summary ddg-lab-flow-status", "aria-live": "polite"}, root);
     this.start.addEventListener("click", function () { self.begin(); });
     this.play.addEventListener("click", function () { self.toggle(); });
-    this.stepButton.addEventListener("click", function () { if (!self.runs) self.begin(); self.step(); self.draw(); });
+    this.stepButton.addEventListener("click", function () { self.pause(); if (!self.runs) self.begin(); self.next(); self.draw(); });
+    this.slider.addEventListener("input", function () { self.pause(); self.time = Number(self.slider.value) / 1000 * self.tmax(); self.draw(true); });
   }
+  Flows.prototype.clear = function (why) {  // the polygon changed: the runs no longer belong to it
+    this.pause();
+    this.runs = null;
+    this.panels.textContent = "";
+    this.chart.svg.style.display = "none";
+    this.caption.textContent = "";
+    this.slider.disabled = true;
+    this.shownTime.textContent = "";
+    this.status.textContent = why;
+  };
   Flows.prototype.begin = function () {
     var self = this, v = this.lab.vertices.map(function (p) { return p.slice(); }), curve;
     this.pause();
     try { curve = new window.ddgLab.DiscreteCurve(v); } catch (e) { this.status.textContent = "No flow: " + e.message + "."; return; }
+    this.version = this.lab.version;
     this.panels.textContent = "";
-    this.chart.style.display = "";
+    this.chart.svg.style.display = "";
+    this.slider.disabled = false;
+    this.time = 0;
     this.area0 = curve.signed_area;
     this.length0 = curve.length;
     this.areaUnit = Math.abs(this.area0) > 1e-9 * this.length0 * this.length0 ? Math.abs(this.area0) : this.length0 * this.length0 / (4 * Math.PI);
     this.runs = window.ddgLab.CURVATURES.map(function (kind) {
       var figure = element("figure", {class: "ddg-lab-flow"}, self.panels), svg = element("svg", {class: "ddg-panel", width: 170, height: 170, "aria-hidden": "true"}, figure);
       frame(svg, v);
-      var run = {kind: kind, vertices: v, t: 0, stopped: null, record: [[0, 1, curve.signed_area / self.areaUnit]],
-                 path: element("path", {fill: "none", stroke: FLOW_COLORS[kind], "stroke-width": 2, "vector-effect": "non-scaling-stroke"}, svg),
-                 label: element("figcaption", {}, figure)};
       element("path", {d: pathOf(v, true), fill: "none", stroke: "currentColor", "stroke-opacity": 0.3, "vector-effect": "non-scaling-stroke"}, svg);
-      return run;
+      return {kind: kind, vertices: v, t: 0, stopped: null, record: [[0, 1, curve.signed_area / self.areaUnit]], frames: [[0, v]],
+              path: element("path", {fill: "none", stroke: FLOW_COLORS[kind], "stroke-width": 2, "vector-effect": "non-scaling-stroke"}, svg),
+              label: element("figcaption", {}, figure)};
     });
     this.draw();
   };
-  Flows.prototype.step = function () {  // one explicit step of the running flow with the smallest t
+  Flows.prototype.step = function () {  // one explicit step of the running flow with the smallest t; false when all stopped
     var open = (this.runs || []).filter(function (r) { return !r.stopped; });
     if (!open.length) return false;
     var run = open.reduce(function (a, b) { return b.t < a.t ? b : a; });
@@ -542,23 +938,42 @@
       run.vertices = next.vertices;
       run.t += next.dt;
       run.record.push([run.t, c.length / this.length0, c.signed_area / this.areaUnit]);
+      run.frames.push([run.t, next.vertices]);
+      if (run.frames.length > FRAMES) run.frames = run.frames.filter(function (f, j, all) { return j % 2 === 0 || j === all.length - 1; });
     } catch (e) {
       run.stopped = e.message.replace(/^stopped at t = [^:]*: /, "");
     }
     return true;
   };
+  Flows.prototype.tmax = function () { return Math.max.apply(null, (this.runs || []).map(function (r) { return r.t; })); };
+  Flows.prototype.next = function () {  // Step: the next recorded time after the one shown, or one step more
+    var after = [];
+    this.runs.forEach(function (r) { r.record.forEach(function (p) { if (p[0] > this.time) after.push(p[0]); }, this); }, this);
+    if (after.length) { this.time = Math.min.apply(null, after); return; }
+    var open = this.runs.filter(function (r) { return !r.stopped; });
+    if (!open.length) { this.status.textContent += " All three have stopped: nothing to step."; return; }
+    var run = open.reduce(function (a, b) { return b.t < a.t ? b : a; });
+    this.step();
+    this.time = Math.max(this.time, run.t);
+  };
   Flows.prototype.toggle = function () {
     if (this.timer) { this.pause(); return; }
-    if (!this.runs || this.runs.every(function (r) { return r.stopped; })) this.begin();
-    var self = this;
+    if (!this.runs) this.begin();
+    if (!this.runs) return;
+    var self = this, last = performance.now();
+    if (this.runs.every(function (r) { return r.stopped; }) && this.time >= this.tmax()) this.time = 0;  // again from the start
     this.play.textContent = "Pause";
     this.play.setAttribute("aria-pressed", "true");
-    var tick = function () {  // steps for up to 8 ms of each frame
+    var tick = function (now) {  // compute for up to 8 ms of each frame, then move the time shown on
       var until = performance.now() + 8, going = true;
       while (going && performance.now() < until) going = self.step();
+      var open = self.runs.filter(function (r) { return !r.stopped; }), frontier = open.length ? Math.min.apply(null, open.map(function (r) { return r.t; })) : Infinity;
+      var end = self.tmax(), rate = end / Number(self.speed.value);
+      self.time = Math.min(self.time + rate * (now - last) / 1000, frontier, end);
+      last = now;
       self.draw();
-      self.timer = going ? requestAnimationFrame(tick) : 0;
-      if (!going) self.pause();
+      if (!going && self.time >= end) { self.pause(); return; }
+      self.timer = requestAnimationFrame(tick);
     };
     this.timer = requestAnimationFrame(tick);
   };
@@ -568,26 +983,42 @@
     this.play.textContent = "Play";
     this.play.setAttribute("aria-pressed", "false");
   };
-  Flows.prototype.draw = function () {
-    var series = [], tmax = 0, lo = 0, hi = 1;
-    this.runs.forEach(function (r) {
-      r.path.setAttribute("d", pathOf(r.vertices, true));
-      r.label.textContent = r.kind + " flow, t = " + short(r.t) + (r.stopped ? ": stopped" : "");
-      tmax = Math.max(tmax, r.t);
+  var RULES = [[/nearly vanished/, "length < 5%"], [/edge fell below/, "edge < 2% of mean"], [/turning number changed/, "turning number changed"],
+               [/step fell below/, "step too small"], [/turns straight back/, "ψ = π"], [/degenerate/, "degenerate"]];
+  function rule(text) { var r = RULES.filter(function (x) { return x[0].test(text); })[0]; return r ? r[1] : "stopped"; }
+  Flows.prototype.draw = function (scrubbed) {
+    var series = [], tmax = this.tmax(), lo = 0, hi = 1, time = Math.min(this.time, tmax), marks = [];
+    this.runs.forEach(function (r, j) {
+      var f = r.frames, a = 0, b = f.length - 1;
+      while (a < b) { var m = (a + b + 1) >> 1; if (f[m][0] <= time) a = m; else b = m - 1; }  // the last snapshot by `time`
+      r.path.setAttribute("d", pathOf(f[a][1], true));
+      r.shown = f[a][0];
+      var done = r.stopped && a === f.length - 1;
+      r.label.textContent = r.kind + " flow, t = " + short(f[a][0]) + (done ? ": stopped (" + rule(r.stopped) + ")" : "");
       r.record.forEach(function (p) { lo = Math.min(lo, p[2]); hi = Math.max(hi, p[2]); });
       series.push({color: FLOW_COLORS[r.kind], points: r.record.map(function (p) { return [p[0], p[1]]; })},
                   {color: FLOW_COLORS[r.kind], dashed: true, points: r.record.map(function (p) { return [p[0], p[2]]; })});
+      if (r.stopped) marks.push({x: r.t, color: FLOW_COLORS[r.kind], label: rule(r.stopped), row: j});
     });
-    plot(this.chart, series, 0, tmax || 1, lo, hi);
+    marks.push({x: time, color: "currentColor"});
+    this.chart.draw(series, 0, tmax || 1, lo, hi, marks, "length and area of the three flows against time");
+    if (!scrubbed) this.slider.value = tmax ? Math.round(1000 * time / tmax) : 0;
+    this.shownTime.textContent = short(time);
     this.caption.textContent = "Above: the length L/L(0) (solid) and the signed area A/" + (this.areaUnit === Math.abs(this.area0) ? "|A(0)|" : "(L(0)²/4π)") +
-      " (dashed) of each flow against time t, from 0 to " + short(tmax) + "; angle blue, sine orange, tangent green.";
+      " (dashed) of each flow against time t, from 0 to " + short(tmax) + "; angle blue, sine orange, tangent green; a dotted line where a flow stopped, named by the rule that stopped it; the solid upright line is the time shown.";
     this.status.textContent = this.runs.map(function (r) {
-      return r.kind + " flow: " + (r.stopped ? "stopped at t = " + short(r.t) + ": " + r.stopped : "t = " + short(r.t) + ", length " + short(r.record[r.record.length - 1][1] * this.length0)) + ".";
+      return r.kind + " flow: " + (r.stopped ? "stopped at t = " + short(r.t) + ": " + r.stopped : "computed to t = " + short(r.t) + " (" + (r.record.length - 1) + " steps), length " + short(r.record[r.record.length - 1][1] * this.length0)) + ".";
     }, this).join(" ");
   };
 
   function start() {
-    document.querySelectorAll(".ddg-lab").forEach(function (root) { if (!root.lab) root.lab = new Lab(root); });
+    var query = new URLSearchParams(window.location.search);
+    document.querySelectorAll(".ddg-lab").forEach(function (root) {
+      if (root.lab) return;
+      root.lab = new Lab(root);
+      // a link into the lab (?lab=..., ?v=...) lands on it, also where the link has no #lab
+      if (!window.location.hash && (query.has("lab") || query.has("v"))) root.scrollIntoView({block: "start"});
+    });
   }
   if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", start);
   else start();
