@@ -1,11 +1,13 @@
 /* Small behaviours of the book's pages. */
 document.addEventListener("DOMContentLoaded", function () {
-  // The phone's menu button opens the chapter list: the theme (pydata-sphinx-theme 0.17, its issue
-  // #2451) binds only the first .primary-toggle, a hidden one; the others do here what it does there.
-  var sidebar = document.getElementById("pst-primary-sidebar"), modal = document.getElementById("pst-primary-sidebar-modal");
-  var bound = document.querySelector(".primary-toggle");
-  if (sidebar && modal && modal.showModal) {
-    document.querySelectorAll(".primary-toggle").forEach(function (button) {
+  // The phone's buttons open the chapter list (☰) and the page's contents: the theme
+  // (pydata-sphinx-theme 0.17, its issue #2451) binds only the first .primary-toggle and the first
+  // .secondary-toggle, hidden ones; the others do here what those do there.
+  ["primary", "secondary"].forEach(function (side) {
+    var sidebar = document.getElementById("pst-" + side + "-sidebar"), modal = document.getElementById("pst-" + side + "-sidebar-modal");
+    var bound = document.querySelector("." + side + "-toggle");
+    if (!sidebar || !modal || !modal.showModal) { return; }
+    document.querySelectorAll("." + side + "-toggle").forEach(function (button) {
       if (button === bound) { return; }
       button.addEventListener("click", function (event) {
         event.preventDefault();
@@ -17,7 +19,7 @@ document.addEventListener("DOMContentLoaded", function () {
         modal.addEventListener("close", function () { if (back && back.focus) { back.focus(); } }, {once: true});
       });
     });
-  }
+  });
   // A solution's title opens the solution: its link to the exercise would jump away instead.
   document.querySelectorAll(".solution > .admonition-title a").forEach(function (link) {
     link.addEventListener("click", function (event) {

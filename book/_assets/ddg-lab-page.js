@@ -157,7 +157,7 @@
   function ticks(a, b, count) {
     var span = b - a || 1, step = Math.pow(10, Math.floor(Math.log10(span / count))), r = span / count / step, out = [];
     step *= r >= 7.5 ? 10 : r >= 3.5 ? 5 : r >= 1.5 ? 2 : 1;
-    for (var x = Math.ceil(a / step - 1e-9) * step; x <= b + 1e-9 * span; x += step) out.push(Number(x.toPrecision(12)));
+    for (var i = Math.ceil(a / step - 1e-9); i * step <= b + 1e-9 * span; i++) out.push(Number((i * step).toPrecision(12)));
     return out;
   }
   /* A chart with axes, ticks, axis labels and a legend, its lines kept and reused (a drag redraws it
@@ -172,16 +172,26 @@
     this.labels = [xlabel, ylabel];
     this.lines = [];
     var x = LEFT;
-    legend.forEach(function (item) {  // [text, color, dashed]
-      element("line", {x1: x, x2: x + 18, y1: 8, y2: 8, stroke: item[1], "stroke-width": 2, "stroke-dasharray": item[2] ? "5 3" : "none"}, this.svg);
-      var t = element("text", {x: x + 22, y: 12, "font-size": 11, fill: "currentColor", class: "ddg-chart-legend"}, this.svg);
+    this.legend = legend.map(function (item) {  // [text, color, dashed]: a group each, hidden without its series
+      var g = element("g", {}, this.svg);
+      element("line", {x1: x, x2: x + 18, y1: 8, y2: 8, stroke: item[1], "stroke-width": 2, "stroke-dasharray": item[2] ? "5 3" : "none"}, g);
+      var t = element("text", {x: x + 22, y: 12, "font-size": 11, fill: "currentColor", class: "ddg-chart-legend"}, g);
       t.textContent = item[0];
       x += 30 + 6.2 * item[0].length;
+      return g;
     }, this);
   }
-  Chart.prototype.draw = function (series, x0, x1, y0, y1, marks, alt) {
-    var pad = 0.06 * (y1 - y0 || 1), w = W - LEFT - RIGHT, h = H - TOP - BOTTOM;
-    y0 -= pad; y1 += pad;
+  Chart.prototype.draw = function (series, x0, x1, y0, y1, marks, alt, legendShown) {
+    this.legend.forEach(function (g, j) {
+      var shown = !legendShown || legendShown[j];
+      if (g.shown !== shown) { g.shown = shown; g.setAttribute("visibility", shown ? "visible" : "hidden"); }
+    });
+    var w = W - LEFT - RIGHT, h = H - TOP - BOTTOM, round = ticks(y0, y1, 4), step = round[1] - round[0] || 1;
+    y0 = Math.floor(y0 / step + 1e-9) * step;  // out to round numbers: while a drag stays within them,
+    y1 = Math.ceil(y1 / step - 1e-9) * step;   // the axes are not drawn again
+    if (y1 <= y0) y1 = y0 + step;
+    var across = ticks(x0, x1, 6), xstep = across[1] - across[0] || 1;
+    x1 = Math.max(Math.ceil(x1 / xstep - 1e-9) * xstep, x0 + xstep);  // so too while a flow's time grows
     var sx = w / (x1 - x0 || 1), sy = h / (y1 - y0 || 1);
     var X = function (x) { return LEFT + (x - x0) * sx; }, Y = function (y) { return TOP + h - (y - y0) * sy; };
     this.svg.setAttribute("aria-label", alt);
@@ -210,14 +220,28 @@
       var line = this.lines[j] || (this.lines[j] = element("polyline", {fill: "none", "stroke-width": 1.5}, this.plotted));
       line.setAttribute("stroke", s.color);
       line.setAttribute("stroke-dasharray", s.dashed ? "5 3" : "none");
+      if (s.same && line.drawn === s.same + this.key) return;  // a series that did not change, on the same axes
+      line.drawn = s.same && s.same + this.key;
       line.setAttribute("points", s.points.map(function (p) { return X(p[0]).toFixed(1) + "," + Y(p[1]).toFixed(1); }).join(" "));
     }, this);
-    this.marked.textContent = "";
-    (marks || []).forEach(function (m) {
-      element("line", {x1: X(m.x), x2: X(m.x), y1: TOP, y2: TOP + h, stroke: m.color, "stroke-dasharray": m.label ? "2 2" : "none",
-                       class: m.label ? "ddg-chart-stop" : "ddg-chart-now"}, this.marked);
+    var now = (marks || []).filter(function (m) { return !m.label; }), stops = (marks || []).filter(function (m) { return m.label; });
+    this.now = this.now || [];  // upright lines at a moment: kept and moved (a drag moves the selected vertex's)
+    while (this.now.length > now.length) this.marked.removeChild(this.now.pop());
+    now.forEach(function (m, j) {
+      var line = this.now[j] || (this.now[j] = element("line", {y1: TOP, y2: TOP + h, class: "ddg-chart-now"}, this.marked));
+      line.setAttribute("x1", X(m.x));
+      line.setAttribute("x2", X(m.x));
+      line.setAttribute("stroke", m.color);
+    }, this);
+    var key = stops.map(function (m) { return [m.x, m.label, m.color]; }).join() + this.key;
+    if (key === this.stopKey) return;
+    this.stopKey = key;
+    if (this.stops) this.svg.removeChild(this.stops);
+    this.stops = element("g", {}, this.svg);
+    stops.forEach(function (m) {
+      element("line", {x1: X(m.x), x2: X(m.x), y1: TOP, y2: TOP + h, stroke: m.color, "stroke-dasharray": "2 2", class: "ddg-chart-stop"}, this.stops);
       if (m.label) {
-        var left = X(m.x) > LEFT + w / 2, t = element("text", {x: X(m.x) + (left ? -3 : 3), y: TOP + 11 + 11 * (m.row || 0), "text-anchor": left ? "end" : "start", "font-size": 10, fill: m.color, class: "ddg-chart-stop"}, this.marked);
+        var left = X(m.x) > LEFT + w / 2, t = element("text", {x: X(m.x) + (left ? -3 : 3), y: TOP + 11 + 11 * (m.row || 0), "text-anchor": left ? "end" : "start", "font-size": 10, fill: m.color, class: "ddg-chart-stop"}, this.stops);
         t.textContent = m.label;
       }
     }, this);
@@ -275,11 +299,20 @@
     this.summary = element("p", {class: "ddg-summary", "aria-live": "polite"}, side);
     this.detail = element("p", {class: "ddg-detail ddg-lab-detail", "aria-live": "polite"}, side);
     this.inflation = element("p", {class: "ddg-summary ddg-lab-inflation", "aria-live": "polite"}, side);
+    var pad = element("div", {class: "ddg-controls ddg-lab-pad", role: "group", "aria-label": "the selected vertex"}, side);
+    element("span", {}, pad).textContent = "selected vertex:";
+    [["‹", "the previous vertex (key: Page Up)", -1], ["›", "the next vertex (key: Page Down)", 1],
+     ["←", "move it left by 0.01 (key: ←)", [-0.01, 0]], ["↑", "move it up by 0.01 (key: ↑)", [0, 0.01]],
+     ["↓", "move it down by 0.01 (key: ↓)", [0, -0.01]], ["→", "move it right by 0.01 (key: →)", [0.01, 0]]].forEach(function (b) {
+      var knob = button(pad, b[0], b[1]);
+      knob.setAttribute("aria-label", b[1]);
+      knob.addEventListener("click", function () { self.nudge(b[2]); });
+    });
     var sharing = element("div", {class: "ddg-controls"}, side);
     var copyArray = button(sharing, "Copy as numpy", "the vertices as a numpy array, to paste into a notebook");
     var copyAddress = button(sharing, "Copy address", "an address that opens the lab with this polygon and these settings");
     this.copied = element("textarea", {class: "ddg-lab-copied", readonly: "", rows: 3, "aria-label": "the text copied", hidden: ""}, side);
-    this.tableBox = element("details", {class: "ddg-lab-table"}, root);
+    this.tableBox = element("details", {class: "ddg-lab-table"}, side);
     element("summary", {}, this.tableBox).textContent = "Every vertex in a table (hover or tap a row to find its vertex)";
     this.tableScroll = element("div", {class: "ddg-lab-table-scroll"}, this.tableBox);
     this.table = element("table", {}, this.tableScroll);
@@ -334,6 +367,9 @@
     this.rows.addEventListener("pointerleave", function () { self.hover(undefined); });
     this.svg.addEventListener("pointerover", function (event) { self.hover(event.target.index); });
     this.svg.addEventListener("pointerleave", function () { self.hover(undefined); });
+    var unsay = function (event) { if (!self.svg.contains(event.target)) self.tell(""); };
+    root.addEventListener("click", unsay, true);
+    root.addEventListener("change", unsay, true);
     root.addEventListener("keydown", function (event) {
       if ((event.ctrlKey || event.metaKey) && event.key.toLowerCase() === "z") { event.preventDefault(); self.undo(); }
       if (event.key === "Escape" && root.classList.contains("ddg-lab-full")) self.fullScreen(false);
@@ -353,9 +389,11 @@
     });
     ["pointerup", "pointercancel"].forEach(function (name) {
       self.svg.addEventListener(name, function () {
-        var i = self.dragging;
+        var i = self.dragging, box = self.svg.getAttribute("viewBox").split(" ").map(Number), v = self.vertices[i];
         self.dragging = self.panning = undefined;
-        if (i !== undefined) self.update(i);  // where it was let go, on the colour scale of its curvatures
+        if (i === undefined) return;
+        if (v[0] < box[0] || v[0] > box[0] + box[2] || -v[1] < box[1] || -v[1] > box[1] + box[3]) self.fit();  // let go outside: shown
+        else self.update(i);  // where it was let go, on the colour scale of its curvatures
       });
     });
     if (this.shared) this.show(); else this.reset();
@@ -391,9 +429,9 @@
     this.edited();
     this.fit();
   };
-  Lab.prototype.edited = function () {
+  Lab.prototype.edited = function () {  // no longer a preset: no smooth curve beside it, n is the count
     this.shape.value = "edited";
-    this.n.value = this.vertices.length;
+    this.kappa = null;
     this.n.disabled = true;
   };
   Lab.prototype.tell = function (text) { this.message.textContent = text; };  // refusals, clamps, what was copied
@@ -409,6 +447,7 @@
     var i = this.nearest(event);
     if (i === undefined) {
       if (event.pointerType === "touch") { this.panning = event.clientY; this.svg.setPointerCapture(event.pointerId); }
+      else if (this.circles[this.selected]) { event.preventDefault(); this.circles[this.selected].focus({preventScroll: true}); }  // the keys move it
       return;
     }
     this.dragging = i;  // remembered for Undo when it first moves: a tap only selects
@@ -434,16 +473,20 @@
   Lab.prototype.remember = function () {  // for Undo: the polygon before a change (which ends the last message)
     this.tell("");
     this.version++;  // the flows from the polygon before are out of date
-    this.history.push(this.vertices.map(function (p) { return p.slice(); }));
+    this.history.push({vertices: this.vertices.map(function (p) { return p.slice(); }), shape: this.shape.value, kappa: this.kappa});
     if (this.history.length > 200) this.history.shift();
     if (!this.resetting) this.edited();
   };
   Lab.prototype.undo = function () {
     if (!this.history.length) { this.tell("Nothing to undo."); return; }
-    this.vertices = this.history.pop();
+    var before = this.history.pop();  // the polygon, and whether it was a preset untouched
+    this.vertices = before.vertices;
     if (this.drawing && this.history.length < this.drawFrom) this.toggleDrawing(true);  // back before Draw: drawing ends
     this.version++;
-    this.edited();
+    this.shape.value = before.shape;
+    this.kappa = before.kappa;
+    this.n.disabled = !SMOOTH[before.shape];
+    if (before.shape !== "edited") this.presetN = this.vertices.length;
     this.rebuild();
   };
   Lab.prototype.say = function (text) { this.tell(text); };
@@ -594,6 +637,13 @@
     this.full.textContent = on ? "Leave full screen" : "Full screen";
     if (!on) this.root.scrollIntoView({block: "start"});
   };
+  Lab.prototype.nudge = function (how) {  // the pad: to the previous or next vertex, or the selected one moved
+    var n = this.vertices.length, i = this.selected, v = this.vertices[i];
+    if (!v || this.drawing) { this.tell("Press Done first: while drawing, there is no polygon to move."); return; }
+    if (typeof how === "number") { this.select((i + how + n) % n, true); this.update(); return; }
+    this.remember();
+    this.move(i, [v[0] + how[0], v[1] + how[1]]);
+  };
   Lab.prototype.move = function (i, p) {
     this.vertices[i] = p;
     this.update(i);
@@ -646,7 +696,7 @@
     var c = 0, h = Infinity, A = Infinity;
     curve.vertices.forEach(function (p, i) { c = Math.max(c, Math.abs(p[0]), Math.abs(p[1])); h = Math.min(h, curve.edge_lengths[i]); A = Math.min(A, curve.dual_lengths[i]); });
     var turn = ROUNDING * Math.max(c / h, 1);
-    return {turn: turn, k: turn / A, area: ROUNDING * Math.max(c, curve.length) * curve.length};
+    return {turn: turn, k: turn / A, area: ROUNDING * Math.max(c, curve.length) * curve.length, place: ROUNDING * c};
   }
 
   /* Draw the polygon and say what ddg's formulas give. After vertex `moved` moved, only it and its
@@ -658,6 +708,7 @@
     // shown (lab.ks: the tests read the circle curvature there)
     if (this.flows.runs && this.flows.version !== this.version) this.flows.clear("The polygon changed after these flows ran: press Flow this shape or Play to run them from it.");
     this.path.setAttribute("d", pathOf(v, !this.drawing));
+    if (Number(this.n.value) !== n && document.activeElement !== this.n) this.n.value = n;  // the polygon's own n
     ["turningNumber", "length", "signedArea"].forEach(function (name) { delete s.dataset[name]; });
     try { curve = new lab.DiscreteCurve(v); } catch (e) { parts.push(this.drawing ? "Drawing: " + n + " vertices placed." : "Not a polygon the lecture allows: " + e.message + "."); }
     if (curve) {
@@ -727,8 +778,8 @@
       entry.row.classList.toggle("ddg-lab-row-selected", i === self.selected);
       if (moved !== undefined && (i - moved + n + 1) % n > 2) return;
       var c = entry.cells, p = self.vertices[i];
-      c[1].textContent = short(p[0]);
-      c[2].textContent = short(p[1]);
+      c[1].textContent = tol ? shown(p[0], tol.place) : short(p[0]);
+      c[2].textContent = tol ? shown(p[1], tol.place) : short(p[1]);
       if (!curve) { for (var j = 3; j < c.length; j++) c[j].textContent = "–"; return; }
       var psi = curve.turning_angles[i];
       c[3].textContent = curve.reversals.indexOf(i) >= 0 ? "±180" : shown(psi * 180 / Math.PI, tol.turn * 180 / Math.PI);
@@ -769,8 +820,8 @@
    * polygon moved inward, its signed area, and its reach. */
   Lab.prototype.inflate = function (curve, k) {
     var method = this.method.value, eps = Number(this.eps.value), p = this.inflation, self = this, formula;
-    this.epsTyped.value = eps;
-    this.eps.disabled = this.epsTyped.disabled = !method;
+    if (Number(this.epsTyped.value) !== eps) this.epsTyped.value = eps;  // written only when it changed: a drag
+    if (this.eps.disabled !== !method) this.eps.disabled = this.epsTyped.disabled = !method;  // updates at every frame
     clearTimeout(this.measuring);
     this.region.setAttribute("d", "");
     this.pieces.setAttribute("d", "");
@@ -849,7 +900,7 @@
     if (curve) {
       var psi = curve.turning_angles[i], g = gradient[i], straight = Math.abs(psi) <= tol.turn, back = curve.reversals.indexOf(i) >= 0;
       var v = this.vertices[i];
-      words.push("Vertex " + i + " at (" + short(v[0]) + ", " + short(v[1]) + "): ψ = " +
+      words.push("Vertex " + i + " at (" + shown(v[0], tol.place) + ", " + shown(v[1], tol.place) + "): ψ = " +
                  (back ? "±180° (its edges point in exactly opposite directions, so a turn of +180° and one of −180° are equally right)" :
                   shown(psi * 180 / Math.PI, tol.turn * 180 / Math.PI) + "° (" + (straight ? "straight, to rounding" : psi > 0 ? "turning clockwise" : "turning counter-clockwise") + ")") +
                  "; k: " + KINDS.map(function (name) {
@@ -859,10 +910,14 @@
     this.detail.textContent = words.join(" ");
     var series = [], values = [];
     if (k) { series.push({color: "currentColor", points: k.map(function (x, j) { return [j, x]; })}); values = values.concat(k); }
-    if (smooth) { series.push({color: RAMP[2], dashed: true, points: smooth.map(function (x, j) { return [j, x]; })}); values = values.concat(smooth); }
+    if (smooth) {  // the smooth curve's: the same while the polygon is dragged (`same`: drawn again only on new axes)
+      if (smooth !== this.kappaPoints) this.kappaPoints = smooth, this.kappaSeries = smooth.map(function (x, j) { return [j, x]; }), this.kappaId = (this.kappaId || 0) + 1;
+      series.push({color: RAMP[2], dashed: true, points: this.kappaSeries, same: "kappa" + this.kappaId + "|"});
+      values = values.concat(smooth);
+    }
     var lo = Math.min(0, Math.min.apply(null, values)), hi = Math.max(0, Math.max.apply(null, values));
     this.chart.draw(series, 0, Math.max(this.vertices.length - 1, 1), lo, hi, k ? [{x: i, color: "currentColor"}] : [],
-                    "the " + kind + " curvature at each vertex" + (smooth ? ", and the smooth curve's" : ""));
+                    "the " + kind + " curvature at each vertex" + (smooth ? ", and the smooth curve's" : ""), [!!k, !!smooth]);
     this.caption.textContent = k ? "Above: the " + kind + " curvature k_i (solid) at vertex 0 to " + (k.length - 1) +
       (smooth ? ", and the smooth curve's curvature κ(t_i) where it was sampled (dashed)" : "") +
       "; from " + short(lo) + " to " + short(hi) + "; the upright line marks the selected vertex." : "";
@@ -879,6 +934,7 @@
     this.start = button(controls, "Flow this shape", "run the three flows from the polygon above");
     this.play = button(controls, "Play", "play or pause the flows (a long run stops computing while paused)");
     this.play.setAttribute("aria-pressed", "false");
+    this.play.style.minWidth = "4.6em";  // Play and Pause the same width: Step stays where it is
     this.stepButton = button(controls, "Step", "to the next step of the flow furthest behind");
     this.speed = control(controls, "speed", element("select", {}, null));
     Object.keys(SPEEDS).forEach(function (s) { element("option", {value: SPEEDS[s]}, self.speed).textContent = s; });
@@ -887,7 +943,7 @@
     this.slider.parentNode.classList.add("ddg-lab-time");
     this.shownTime = element("output", {}, this.slider.parentNode);
     this.panels = element("div", {class: "ddg-lab-panels"}, root);
-    this.chart = new Chart(root, "time t", "L/L(0), A/A(0)",
+    this.chart = new Chart(root, "time t", "L/L(0), A/|A(0)|",
                            window.ddgLab.CURVATURES.map(function (k) { return [k, FLOW_COLORS[k], false]; }).concat([["length", "currentColor", false], ["area", "currentColor", true]]));
     this.caption = element("p", {class: "ddg-detail"}, root);
     this.chart.svg.style.display = "none";  // until a flow starts
@@ -904,6 +960,7 @@
     this.chart.svg.style.display = "none";
     this.caption.textContent = "";
     this.slider.disabled = true;
+    this.slider.value = 0;
     this.shownTime.textContent = "";
     this.status.textContent = why;
   };
@@ -919,11 +976,13 @@
     this.area0 = curve.signed_area;
     this.length0 = curve.length;
     this.areaUnit = Math.abs(this.area0) > 1e-9 * this.length0 * this.length0 ? Math.abs(this.area0) : this.length0 * this.length0 / (4 * Math.PI);
+    this.chart.labels[1] = "L/L(0), A/" + (this.areaUnit === Math.abs(this.area0) ? "|A(0)|" : "(L(0)²/4π)");
+    this.chart.key = null;  // the axes drawn again, with that name
     this.runs = window.ddgLab.CURVATURES.map(function (kind) {
       var figure = element("figure", {class: "ddg-lab-flow"}, self.panels), svg = element("svg", {class: "ddg-panel", width: 170, height: 170, "aria-hidden": "true"}, figure);
       frame(svg, v);
       element("path", {d: pathOf(v, true), fill: "none", stroke: "currentColor", "stroke-opacity": 0.3, "vector-effect": "non-scaling-stroke"}, svg);
-      return {kind: kind, vertices: v, t: 0, stopped: null, record: [[0, 1, curve.signed_area / self.areaUnit]], frames: [[0, v]],
+      return {kind: kind, vertices: v, t: 0, stopped: null, record: [[0, 1, curve.signed_area / self.areaUnit]], frames: [[0, v]], steps: 0, stride: 1,
               path: element("path", {fill: "none", stroke: FLOW_COLORS[kind], "stroke-width": 2, "vector-effect": "non-scaling-stroke"}, svg),
               label: element("figcaption", {}, figure)};
     });
@@ -938,8 +997,9 @@
       run.vertices = next.vertices;
       run.t += next.dt;
       run.record.push([run.t, c.length / this.length0, c.signed_area / this.areaUnit]);
-      run.frames.push([run.t, next.vertices]);
-      if (run.frames.length > FRAMES) run.frames = run.frames.filter(function (f, j, all) { return j % 2 === 0 || j === all.length - 1; });
+      run.steps += 1;
+      if (run.steps % run.stride === 0) run.frames.push([run.t, next.vertices]);  // every stride-th step: evenly spread
+      if (run.frames.length > FRAMES) { run.frames = run.frames.filter(function (f, j) { return j % 2 === 0; }); run.stride *= 2; }
     } catch (e) {
       run.stopped = e.message.replace(/^stopped at t = [^:]*: /, "");
     }
@@ -989,8 +1049,8 @@
   Flows.prototype.draw = function (scrubbed) {
     var series = [], tmax = this.tmax(), lo = 0, hi = 1, time = Math.min(this.time, tmax), marks = [];
     this.runs.forEach(function (r, j) {
-      var f = r.frames, a = 0, b = f.length - 1;
-      while (a < b) { var m = (a + b + 1) >> 1; if (f[m][0] <= time) a = m; else b = m - 1; }  // the last snapshot by `time`
+      var f = r.frames.concat([[r.t, r.vertices]]), a = 0, b = f.length - 1;  // the snapshots and where it is now
+      while (a < b) { var m = (a + b + 1) >> 1; if (f[m][0] <= time) a = m; else b = m - 1; }  // the last one by `time`
       r.path.setAttribute("d", pathOf(f[a][1], true));
       r.shown = f[a][0];
       var done = r.stopped && a === f.length - 1;
@@ -1012,6 +1072,7 @@
   };
 
   function start() {
+    document.documentElement.classList.add("ddg-lab-page");  // the theme's Back to top stays hidden (ddg-book.css)
     var query = new URLSearchParams(window.location.search);
     document.querySelectorAll(".ddg-lab").forEach(function (root) {
       if (root.lab) return;

@@ -158,7 +158,8 @@ def test_find_a_vertex_by_number_ring_and_table(browser, book, view):
             tolerance = 1024 * 2.0**-52 * max(np.abs(v).max() / curve.edge_lengths.min(), 1)
             for i, row in enumerate(table):
                 psi = curve.turning_angles[i]
-                want = [i, *v[i], 0 if abs(psi) <= tolerance else np.degrees(psi), curve.dual_lengths[i]]
+                place = [0 if abs(x) <= 1024 * 2.0**-52 * np.abs(v).max() else x for x in v[i]]  # rounding: 0
+                want = [i, *place, 0 if abs(psi) <= tolerance else np.degrees(psi), curve.dual_lengths[i]]
                 want += [0 if abs(k) <= tolerance / curve.dual_lengths.min() else k
                          for k in (curve.curvature(kind)[i] for kind in ddg.CURVATURES)]
                 assert [float(x) for x in row[:8]] == [six(x) for x in want], (i, row, want)
@@ -480,16 +481,33 @@ def test_the_flow_player(browser, book, view):
         stops = page.locator(".ddg-lab-flows text.ddg-chart-stop").all_text_contents()
         assert stops == ["edge < 2% of mean"] * 3, stops
         assert page.locator(".ddg-lab-flows .ddg-chart-tick").count() >= 6
-        assert page.locator(".ddg-lab-flows .ddg-chart-label").all_text_contents() == ["time t", "L/L(0), A/A(0)"]
+        assert page.locator(".ddg-lab-flows .ddg-chart-label").all_text_contents() == ["time t", "L/L(0), A/|A(0)|"]
         # the slider at a generated moment: each panel shows its last snapshot by then
         tmax = max(t for _, t, _ in runs)
         for value in (0, 137, 500, 999, 1000):
             page.locator(".ddg-lab-time input").fill(str(value))
             time = value / 1000 * tmax
-            shown = lab.get("lab.flows.runs.map(r => [r.shown, r.frames.map(f => f[0])])")
+            shown = lab.get("lab.flows.runs.map(r => [r.shown, r.frames.map(f => f[0]).concat([r.t])])")
             for at, times in shown:
                 assert at == max(x for x in times if x <= time + 1e-15), (value, at)
             assert float(lab.get("lab.flows.shownTime.textContent")) == six(time)
+        # on generated presets the panels show, at every moment, a snapshot fewer steps back than the
+        # stride of the snapshots kept (the ellipse's once stayed at t = 0 until the end)
+        for query in ("ellipse", "ellipse&n=24", "blob&n=40", "regular&n=30", "star"):
+            page.goto(lab.base + PAGE + f"?lab={query}#lab")
+            lab.ready()
+            page.evaluate(f"() => {{ const f = {LAB}.flows; f.begin(); for (let k = 0; k < 20000 && f.step(); k++); }}")
+            tmax = lab.get("lab.flows.tmax()")
+            for value in range(0, 1001, 50):
+                page.locator(".ddg-lab-time input").fill(str(value))
+                for shown, times, stride in lab.get("lab.flows.runs.map(r => [r.shown, r.record.map(p => p[0]), r.stride])"):
+                    now = max(j for j, t in enumerate(times) if t <= value / 1000 * tmax + 1e-15)
+                    assert now - times.index(shown) < stride, (query, value, now, times.index(shown), stride)
+        page.goto(lab.base + PAGE + "?lab=pentagon#lab")
+        lab.ready()
+        page.locator(".ddg-lab-flows select").select_option(label="fast (3 s)")
+        lab.press("Flow this shape")
+        page.evaluate(f"() => {{ const f = {LAB}.flows; while (f.step()); f.draw(); }}")
         # Step from the start goes to the next recorded time
         page.locator(".ddg-lab-time input").fill("0")
         lab.press("Step")
@@ -499,6 +517,7 @@ def test_the_flow_player(browser, book, view):
         page.evaluate(f"() => {LAB}.circles[0].focus()")
         page.keyboard.press("ArrowUp")
         assert lab.get("lab.flows.runs") is None and "polygon changed" in lab.get("lab.flows.status.textContent")
+        assert lab.get("[lab.flows.slider.value, lab.flows.slider.disabled]") == ["0", True]
         assert page.locator(".ddg-lab-flow").count() == 0
         # n = 2000: Play, then Pause; nothing is computed after the pause
         page.goto(lab.base + PAGE + "?lab=regular&n=2000#lab")
@@ -522,8 +541,16 @@ def test_charts_have_axes_and_the_drawing_holds_its_arrows(browser, book):
         assert lab.page.locator(".ddg-lab > svg.ddg-lab-chart .ddg-chart-tick").count() >= 6
         labels = lab.page.locator(".ddg-lab > svg.ddg-lab-chart .ddg-chart-label").all_text_contents()
         assert labels == ["vertex i", "kᵢ"]
-        legend = lab.page.locator(".ddg-lab > svg.ddg-lab-chart text.ddg-chart-legend").all_text_contents()
-        assert legend == ["kᵢ of the polygon", "κ(tᵢ) of the smooth curve"]
+        shown = "() => [...document.querySelectorAll('.ddg-lab > svg.ddg-lab-chart text.ddg-chart-legend')].filter(t => t.closest('g').getAttribute('visibility') !== 'hidden').map(t => t.textContent)"
+        assert lab.page.evaluate(shown) == ["kᵢ of the polygon"]  # the star is no sample of a smooth curve
+        lab.page.locator(".ddg-lab select").first.select_option("ellipse")
+        assert lab.page.evaluate(shown) == ["kᵢ of the polygon", "κ(tᵢ) of the smooth curve"]
+        lab.page.evaluate(f"() => {{ {LAB}.circles[3].focus(); }}")
+        lab.page.keyboard.press("ArrowUp")  # no longer the ellipse's sample: no kappa beside it
+        assert lab.page.evaluate(shown) == ["kᵢ of the polygon"] and lab.get("lab.shape.value") == "edited"
+        lab.page.keyboard.press("Control+z")  # back to the preset, untouched
+        assert lab.page.evaluate(shown) == ["kᵢ of the polygon", "κ(tᵢ) of the smooth curve"]
+        assert lab.get("[lab.shape.value, lab.n.value, lab.n.disabled]") == ["ellipse", "10", False]  # n: the star's 10, carried over
         x, y, w, h = map(float, lab.get("lab.svg.getAttribute('viewBox')").split())
         numbers = np.array([float(a) for a in re.findall(r"-?[\d.]+(?:e-?\d+)?", lab.get("lab.arrowPath.getAttribute('d')"))]).reshape(-1, 2)
         assert (numbers[:, 0] >= x).all() and (numbers[:, 0] <= x + w).all()
@@ -554,5 +581,62 @@ def test_full_screen_and_nothing_covers_the_readouts(browser, book, view):
         page.mouse.wheel(0, -200)  # the theme shows Back to top when the reader scrolls up
         page.wait_for_timeout(300)
         assert not page.locator("#pst-back-to-top").is_visible()
+    finally:
+        lab.close()
+
+
+@pytest.mark.parametrize("view", VIEWS)
+def test_exercise_when_a_corner_turns_reflex_by_touch_or_keys(browser, book, view):
+    """Chapter 10's exercise ex-explore-reflex as a student does it: the hexagon, vertex 2 selected
+    by a tap on its row in the table (phone) or on the vertex (desktop), then ↑ pressed (the pad's
+    button by finger, the arrow key on the desktop): psi_2 turns negative at the 58th press, as the
+    solution says, and each press moves v_2 by 0.01."""
+    phone = view.startswith("phone")
+    lab = Lab(browser, book, PAGE + "?lab=regular&n=6#lab", phone)
+    page = lab.page
+    try:
+        start = np.array(lab.get("lab.vertices"))
+        if phone:
+            page.locator(".ddg-lab-table summary").tap()
+            page.locator(".ddg-lab-table tbody tr").nth(2).tap()
+        else:
+            x, y = page.evaluate(f"() => {{ const c = {LAB}.circles[2].getBoundingClientRect(); return [c.x + c.width / 2, c.y + c.height / 2]; }}")
+            page.mouse.click(x, y)
+        assert lab.get("lab.selected") == 2
+        up = page.locator(".ddg-lab-pad").get_by_role("button", name="move it up by 0.01 (key: ↑)")
+        for presses in range(1, 59):
+            up.tap() if phone else page.keyboard.press("ArrowUp")
+            if presses in (1, 57, 58):
+                psi = float(re.search(r"ψ = (-?[\d.]+)°", lab.get("lab.detail.textContent"))[1])
+                assert (psi > 0) == (presses <= 57), (presses, psi)
+        v = np.array(lab.get("lab.vertices"))
+        assert np.allclose(v[2] - start[2], [0, 0.58], atol=1e-12) and np.array_equal(np.delete(v, 2, 0), np.delete(start, 2, 0))
+        assert lab.get("lab.message.textContent") == ""
+    finally:
+        lab.close()
+
+
+def test_a_vertex_let_go_outside_the_view_is_shown_and_messages_end(browser, book):
+    """A vertex dragged out of the drawing and let go there: the view grows to show it. A message
+    lasts until the next action: Remove on a triangle is said, and the next press ends it."""
+    lab = Lab(browser, book, PAGE + "?lab=regular&n=3#lab")
+    page = lab.page
+    try:
+        x, y = page.evaluate(f"() => {{ const c = {LAB}.circles[0].getBoundingClientRect(); return [c.x + c.width / 2, c.y + c.height / 2]; }}")
+        box = page.locator("svg.ddg-lab-svg").bounding_box()
+        page.mouse.move(x, y)
+        page.mouse.down()
+        page.mouse.move(box["x"] + box["width"] + 150, y - 40, steps=6)
+        page.mouse.up()
+        vx, vy = lab.get("lab.vertices[0]")
+        left, top, width, height = map(float, lab.get("lab.svg.getAttribute('viewBox')").split())
+        assert vx > 1.5 and left <= vx <= left + width and top <= -vy <= top + height, (vx, vy, left, width)
+        lab.press("Remove vertex")
+        assert "at least 3 vertices" in lab.message()
+        page.locator(".ddg-lab select").nth(1).select_option("sine")
+        assert lab.message() == ""
+        lab.press("Remove vertex")
+        lab.press("Undo")
+        assert lab.message() == "" and lab.get("lab.vertices[0][0]") < 1.01  # the drag undone
     finally:
         lab.close()

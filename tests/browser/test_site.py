@@ -290,8 +290,9 @@ def test_a_reader_searches_from_a_chapter(servers, browser, site):
 @pytest.mark.parametrize("site, scheme", [(site, scheme) for site in SITES for scheme in ("light", "dark")])
 def test_a_phone_reader_opens_the_chapter_list_by_tapping_the_menu(servers, browser, site, scheme):
     """On a phone, light or dark, the ☰ button opens the list of every chapter (the theme alone
-    binds a hidden twin of it), a tap on a chapter there opens that chapter, and the page logs no
-    error on its first load (no stored theme)."""
+    binds a hidden twin of it), a tap on a chapter there opens that chapter, the contents button
+    (the same story) opens the page's sections and a tap goes to one, and the page logs no error
+    on its first load (no stored theme)."""
     context = browser.new_context(viewport={"width": 390, "height": 844}, has_touch=True, is_mobile=True,
                                   color_scheme=scheme)
     page = context.new_page()
@@ -312,6 +313,14 @@ def test_a_phone_reader_opens_the_chapter_list_by_tapping_the_menu(servers, brow
         link = page.locator("#pst-primary-sidebar-modal a[href$='03_winding_number.html']").first
         link.tap()
         page.wait_for_url("**/03_winding_number.html")
+        # the page's contents (the button at the top right): its sections, and a tap goes to one
+        page.locator(".secondary-toggle:visible").first.tap()
+        page.wait_for_selector("#pst-secondary-sidebar-modal[open]", timeout=5000)
+        sections = page.locator("#pst-secondary-sidebar-modal nav a.nav-link:visible")
+        assert sections.count() >= 3, sections.all_text_contents()
+        target = sections.nth(1).get_attribute("href")
+        sections.nth(1).tap()
+        page.wait_for_url(f"**/03_winding_number.html{target}")
         assert not errors and not outside, (errors, outside)
     finally:
         context.close()
