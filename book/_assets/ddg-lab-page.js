@@ -317,7 +317,7 @@
     this.tableScroll = element("div", {class: "ddg-lab-table-scroll"}, this.tableBox);
     this.table = element("table", {}, this.tableScroll);
     var head = element("tr", {}, element("thead", {}, this.table));
-    ["i", "x", "y", "ψᵢ (°)", "Aᵢ"].concat(KINDS.map(function (k) { return "k " + k; })).forEach(function (h) { element("th", {scope: "col"}, head).textContent = h; });
+    ["i", "ψᵢ (°)", "Aᵢ"].concat(KINDS.map(function (k) { return "k " + k; })).forEach(function (h) { element("th", {scope: "col"}, head).textContent = h; });
     this.rows = element("tbody", {}, this.table);
     this.chart = new Chart(root, "vertex i", "kᵢ", [["kᵢ of the polygon", "currentColor", false], ["κ(tᵢ) of the smooth curve", RAMP[2], true]]);
     this.caption = element("p", {class: "ddg-detail ddg-lab-caption"}, root);
@@ -358,7 +358,10 @@
     this.full.addEventListener("click", function () { self.fullScreen(!root.classList.contains("ddg-lab-full")); });
     copyArray.addEventListener("click", function () { self.copy(self.asNumpy(), "the " + self.vertices.length + " vertices as a numpy array: paste them into a notebook cell"); });
     copyAddress.addEventListener("click", function () { self.copy(self.address(), "the address of this polygon and these settings"); });
-    this.tableBox.addEventListener("toggle", function () { if (self.tableBox.open) self.update(); });
+    this.tableBox.addEventListener("toggle", function () {  // open: a smaller drawing, a wider table beside it
+      root.classList.toggle("ddg-lab-tabled", self.tableBox.open);
+      if (self.tableBox.open) self.update();
+    });
     this.rows.addEventListener("click", function (event) {
       var row = event.target.closest("tr");
       if (row) { self.select(row.index, true); self.update(); }
@@ -768,7 +771,7 @@
       this.cells = this.vertices.map(function (_, i) {
         var row = element("tr", {}, self.rows), cells = [];
         row.index = i;
-        for (var j = 0; j < 5 + KINDS.length; j++) cells.push(element(j ? "td" : "th", j ? {} : {scope: "row"}, row));
+        for (var j = 0; j < 3 + KINDS.length; j++) cells.push(element(j ? "td" : "th", j ? {} : {scope: "row"}, row));
         cells[0].textContent = i;
         return {row: row, cells: cells};
       });
@@ -777,14 +780,12 @@
     this.cells.forEach(function (entry, i) {
       entry.row.classList.toggle("ddg-lab-row-selected", i === self.selected);
       if (moved !== undefined && (i - moved + n + 1) % n > 2) return;
-      var c = entry.cells, p = self.vertices[i];
-      c[1].textContent = tol ? shown(p[0], tol.place) : short(p[0]);
-      c[2].textContent = tol ? shown(p[1], tol.place) : short(p[1]);
-      if (!curve) { for (var j = 3; j < c.length; j++) c[j].textContent = "–"; return; }
+      var c = entry.cells;
+      if (!curve) { for (var j = 1; j < c.length; j++) c[j].textContent = "–"; return; }
       var psi = curve.turning_angles[i];
-      c[3].textContent = curve.reversals.indexOf(i) >= 0 ? "±180" : shown(psi * 180 / Math.PI, tol.turn * 180 / Math.PI);
-      c[4].textContent = short(curve.dual_lengths[i]);
-      KINDS.forEach(function (name, j) { c[5 + j].textContent = Array.isArray(ks[name]) ? shown(ks[name][i], tol.k) : "undefined"; });
+      c[1].textContent = curve.reversals.indexOf(i) >= 0 ? "±180" : shown(psi * 180 / Math.PI, tol.turn * 180 / Math.PI);
+      c[2].textContent = short(curve.dual_lengths[i]);
+      KINDS.forEach(function (name, j) { c[3 + j].textContent = Array.isArray(ks[name]) ? shown(ks[name][i], tol.k) : "undefined"; });
     });
     var row = this.cells[this.selected];  // the selected vertex's row in view, inside the table's own scroll box
     if (row && moved === undefined) {
