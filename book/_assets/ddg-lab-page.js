@@ -314,7 +314,7 @@
     this.copied = element("textarea", {class: "ddg-lab-copied", readonly: "", rows: 3, "aria-label": "the text copied", hidden: ""}, side);
     this.tableBox = element("details", {class: "ddg-lab-table"}, side);
     element("summary", {}, this.tableBox).textContent = "Every vertex in a table (hover or tap a row to find its vertex)";
-    this.tableScroll = element("div", {class: "ddg-lab-table-scroll"}, this.tableBox);
+    this.tableScroll = element("div", {class: "ddg-lab-table-scroll", tabindex: 0, role: "region", "aria-label": "the table of vertices (scrolls)"}, this.tableBox);
     this.table = element("table", {}, this.tableScroll);
     var head = element("tr", {}, element("thead", {}, this.table));
     ["i", "ψᵢ (°)", "Aᵢ"].concat(KINDS.map(function (k) { return "k " + k; })).forEach(function (h) { element("th", {scope: "col"}, head).textContent = h; });
