@@ -696,8 +696,12 @@
    * and |grad L|, an area. Coordinates carry a relative error of 2^-52; a turn between edges of
    * length h at coordinates of size c inherits about 2^-52 c / h; we allow 1024 times that. */
   function noise(curve) {
-    var c = 0, h = Infinity, A = Infinity;
-    curve.vertices.forEach(function (p, i) { c = Math.max(c, Math.abs(p[0]), Math.abs(p[1])); h = Math.min(h, curve.edge_lengths[i]); A = Math.min(A, curve.dual_lengths[i]); });
+    var c = 0, h = Infinity, A = Infinity, v = curve.vertices, l = curve.edge_lengths, d = curve.dual_lengths;
+    for (var i = 0; i < v.length; i++) {  // a plain loop: this runs at every frame of a drag
+      c = Math.max(c, Math.abs(v[i][0]), Math.abs(v[i][1]));
+      if (l[i] < h) h = l[i];
+      if (d[i] < A) A = d[i];
+    }
     var turn = ROUNDING * Math.max(c / h, 1);
     return {turn: turn, k: turn / A, area: ROUNDING * Math.max(c, curve.length) * curve.length, place: ROUNDING * c};
   }
@@ -826,7 +830,7 @@
     clearTimeout(this.measuring);
     this.region.setAttribute("d", "");
     this.pieces.setAttribute("d", "");
-    this.offset.setAttribute("d", "");
+    if (this.offset.getAttribute("d")) this.offset.setAttribute("d", "");
     delete p.dataset.formula; delete p.dataset.measured; delete p.dataset.offsetArea; delete p.dataset.reach;
     p.textContent = "";
     if (!method || !curve) return;
@@ -842,7 +846,7 @@
         curve.signed_area + eps * curve.length + eps * eps / 2 * k.reduce(function (total, x, i) { return total + curve.dual_lengths[i] * x; }, 0);  // <k, 1> = sum A_i k_i
     } catch (e) { p.textContent = "No inflation: " + e.message + "."; return; }
     p.dataset.formula = formula;
-    var reaches = reach(curve);
+    var reaches = method === "offset" ? reach(curve) : null;
     if (eps < 0) {  // the offset moved inward: its polygon, its signed area (the formula's, for every eps), its reach
       var moved = offsetPolygon(curve, eps), area = -window.ddgLab.signed_area_ccw(moved), r = reaches.inward;
       p.dataset.offsetArea = area;
