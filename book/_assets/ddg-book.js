@@ -19,6 +19,11 @@ document.addEventListener("DOMContentLoaded", function () {
         modal.addEventListener("close", function () { if (back && back.focus) { back.focus(); } }, {once: true});
       });
     });
+    // a section of this page chosen there: the page scrolls to it, and the list closes
+    modal.addEventListener("click", function (event) {
+      var link = event.target.closest("a[href^='#']");
+      if (link && modal.open) { modal.close(); }
+    });
   });
   // A solution's title opens the solution: its link to the exercise would jump away instead.
   document.querySelectorAll(".solution > .admonition-title a").forEach(function (link) {

@@ -71,6 +71,7 @@
   function element(name, attributes, parent) {
     var svg = ["svg", "path", "circle", "g", "polyline", "line", "text"].indexOf(name) >= 0;
     var e = document.createElementNS(svg ? SVG : "http://www.w3.org/1999/xhtml", name);
+    if (name === "select" || name === "input") e.setAttribute("autocomplete", "off");  // no values the browser restores on reload
     Object.keys(attributes).forEach(function (a) { e.setAttribute(a, attributes[a]); });
     if (parent) parent.appendChild(e);
     return e;
@@ -190,8 +191,10 @@
     y0 = Math.floor(y0 / step + 1e-9) * step;  // out to round numbers: while a drag stays within them,
     y1 = Math.ceil(y1 / step - 1e-9) * step;   // the axes are not drawn again
     if (y1 <= y0) y1 = y0 + step;
-    var across = ticks(x0, x1, 6), xstep = across[1] - across[0] || 1;
-    x1 = Math.max(Math.ceil(x1 / xstep - 1e-9) * xstep, x0 + xstep);  // so too while a flow's time grows
+    if (this.roundX) {  // so too while a flow's time grows
+      var across = ticks(x0, x1, 6), xstep = across[1] - across[0] || 1;
+      x1 = Math.max(Math.ceil(x1 / xstep - 1e-9) * xstep, x0 + xstep);
+    }
     var sx = w / (x1 - x0 || 1), sy = h / (y1 - y0 || 1);
     var X = function (x) { return LEFT + (x - x0) * sx; }, Y = function (y) { return TOP + h - (y - y0) * sy; };
     this.svg.setAttribute("aria-label", alt);
@@ -351,6 +354,10 @@
     this.method.addEventListener("change", function () { self.fit(); });
     this.eps.addEventListener("input", function () { self.epsTyped.value = self.eps.value; self.fit(); });
     this.epsTyped.addEventListener("change", function () { var said = self.setEps(self.epsTyped.value); self.fit(); self.tell(said); });
+    this.epsTyped.addEventListener("input", function () {  // as it is typed, when it is already a number in range
+      var x = Number(self.epsTyped.value);
+      if (self.epsTyped.value !== "" && x >= EPS_RANGE[0] && x <= EPS_RANGE[1]) { self.eps.value = x; self.fit(); }
+    });
     this.draw.addEventListener("click", function () { self.toggleDrawing(); });
     add.addEventListener("click", function () { self.add(self.selected); });
     remove.addEventListener("click", function () { self.remove(self.selected); });
@@ -433,7 +440,7 @@
     this.fit();
   };
   Lab.prototype.edited = function () {  // no longer a preset: no smooth curve beside it, n is the count
-    this.shape.value = "edited";
+    this.shape.value = this.shown = "edited";
     this.kappa = null;
     this.n.disabled = true;
   };
@@ -476,7 +483,7 @@
   Lab.prototype.remember = function () {  // for Undo: the polygon before a change (which ends the last message)
     this.tell("");
     this.version++;  // the flows from the polygon before are out of date
-    this.history.push({vertices: this.vertices.map(function (p) { return p.slice(); }), shape: this.shape.value, kappa: this.kappa});
+    this.history.push({vertices: this.vertices.map(function (p) { return p.slice(); }), shape: this.shown || "edited", kappa: this.kappa});
     if (this.history.length > 200) this.history.shift();
     if (!this.resetting) this.edited();
   };
@@ -486,7 +493,7 @@
     this.vertices = before.vertices;
     if (this.drawing && this.history.length < this.drawFrom) this.toggleDrawing(true);  // back before Draw: drawing ends
     this.version++;
-    this.shape.value = before.shape;
+    this.shape.value = this.shown = before.shape;
     this.kappa = before.kappa;
     this.n.disabled = !SMOOTH[before.shape];
     if (before.shape !== "edited") this.presetN = this.vertices.length;
@@ -500,7 +507,7 @@
     this.resetting = true;
     if (this.vertices) this.remember();
     this.resetting = false;
-    this.shape.value = this.preset = name;
+    this.shape.value = this.preset = this.shown = name;
     this.vertices = smooth ? null : POLYGONS[name].map(function (p) { return p.slice(); });
     this.n.value = smooth ? n : this.vertices.length;
     this.presetN = Number(this.n.value);
@@ -739,7 +746,7 @@
     if (this.dragging === undefined) this.dragTop = 0;  // a drag keeps its first colour scale: were it to follow the
     else top = this.dragTop = this.dragTop || top;      // dragged vertex's |k|, every vertex would be restyled each frame
     var near = function (i) { return moved === undefined || (i - moved + n + 1) % n <= 2; };  // moved or a neighbour
-    var N = curve && this.labels.length ? curve.bisector_normals : null, off = 0.045 * this.size;
+    var N = curve && this.labels.length ? curve.bisector_normals : null, off = 0.06 * this.size;
     this.circles.forEach(function (c, i) {
       var fill = k ? LEVELS[Math.round(64 * clamp(0.5 + (Math.abs(k[i]) <= tol.k ? 0 : k[i]) / (2 * top), 0, 1))] : RAMP[1];
       if (c.fill !== fill) c.setAttribute("fill", c.fill = fill);
@@ -812,11 +819,13 @@
    * |e_{i+1/2}| + eps (tan(psi_i/2) + tan(psi_{i+1}/2)); the first edge to shrink to a point, inward
    * (eps < 0) and outward (eps > 0): {inward: [r, i], outward: [r, i]}. */
   function reach(curve) {
-    var t = curve.tan_half_psi, n = t.length, out = {inward: [Infinity, -1], outward: [Infinity, -1]};
+    var t = curve.tan_half_psi, n = t.length, out = {inward: [Infinity, -1], outward: [Infinity, -1]}, r = [];
     curve.edge_lengths.forEach(function (l, i) {
-      var s = t[i] + t[(i + 1) % n], side = s > 0 ? "inward" : "outward", r = l / Math.abs(s);
-      if (s !== 0 && r < out[side][0]) out[side] = [r, i];
+      var s = t[i] + t[(i + 1) % n], side = s > 0 ? "inward" : "outward";
+      r[i] = s > 0 ? l / s : Infinity;
+      if (s !== 0 && l / Math.abs(s) < out[side][0]) out[side] = [l / Math.abs(s), i];
     });
+    out.inwardAll = r.map(function (x, i) { return x <= out.inward[0] * (1 + 1e-9) ? i : -1; }).filter(function (i) { return i >= 0; });  // all at once (a symmetric star)
     return out;
   }
 
@@ -849,6 +858,9 @@
     var reaches = method === "offset" ? reach(curve) : null;
     if (eps < 0) {  // the offset moved inward: its polygon, its signed area (the formula's, for every eps), its reach
       var moved = offsetPolygon(curve, eps), area = -window.ddgLab.signed_area_ccw(moved), r = reaches.inward;
+      var first = reaches.inwardAll, reflex = curve.turning_angles.some(function (psi) { return psi < 0; });
+      var which = first.length > 1 ? "the edges from vertices " + first.slice(0, 4).join(", ") + (first.length > 4 ? " and " + (first.length - 4) + " more" : "") + " shrink to points"
+                                   : "the edge from vertex " + r[1] + " shrinks to a point";
       p.dataset.offsetArea = area;
       p.dataset.reach = r[0];
       this.offset.setAttribute("stroke", color);
@@ -856,9 +868,10 @@
       p.textContent = "Moved inward by ε = " + eps.toFixed(2) + " (dashed): the edges move along −N, and the formula A₀ + εL + ε² Σ tan(ψᵢ/2) gives " +
         short(formula) + ", the signed area of the dashed polygon (" + short(area) + "). " +
         (r[1] < 0 ? "No edge shrinks when this polygon moves inward." :
-         "The reach inward is " + short(r[0]) + ": at ε = −" + short(r[0]) + " the edge from vertex " + r[1] + " shrinks to a point" +
-         (-eps > r[0] ? "; ε is past it, so that edge runs backwards and the dashed polygon has a swallowtail, a loop the signed area counts negatively: it is no longer the area of the points at least |ε| inside." :
-          "; until then the dashed polygon is the set of points at least |ε| inside, if no two far parts of the polygon come within 2|ε| of each other."));
+         "The reach inward is " + short(r[0]) + ": at ε = −" + short(r[0]) + " " + which +
+         (-eps > r[0] ? "; ε is past it, so those edges run backwards and the dashed polygon folds over itself: the formula is still its signed area, which is no longer the area of any region." :
+          reflex ? "; until then the dashed polygon lies inside the set of points at least |ε| inside, but is smaller: at a corner that turns counter-clockwise (ψᵢ < 0) that set is rounded by an arc about vᵢ, where the moved edges meet in a sharp corner." :
+          "; until then, the polygon being convex, the dashed polygon is the set of points at least |ε| inside."));
       return;
     }
     var parts = eps > 0 ? pieces(curve, eps, method, k) : {rectangles: [], corners: []}, said = "Inflated by ε = " + eps.toFixed(2) + ", " + name + ": the formula " +
@@ -951,6 +964,7 @@
     this.chart = new Chart(root, "time t", "L/L(0), A/|A(0)|",
                            window.ddgLab.CURVATURES.map(function (k) { return [k, FLOW_COLORS[k], false]; }).concat([["length", "currentColor", false], ["area", "currentColor", true]]));
     this.caption = element("p", {class: "ddg-detail"}, root);
+    this.chart.roundX = true;
     this.chart.svg.style.display = "none";  // until a flow starts
     this.status = element("p", {class: "ddg-summary ddg-lab-flow-status", "aria-live": "polite"}, root);
     this.start.addEventListener("click", function () { self.begin(); });
@@ -987,7 +1001,7 @@
       var figure = element("figure", {class: "ddg-lab-flow"}, self.panels), svg = element("svg", {class: "ddg-panel", width: 170, height: 170, "aria-hidden": "true"}, figure);
       frame(svg, v);
       element("path", {d: pathOf(v, true), fill: "none", stroke: "currentColor", "stroke-opacity": 0.3, "vector-effect": "non-scaling-stroke"}, svg);
-      return {kind: kind, vertices: v, t: 0, stopped: null, record: [[0, 1, curve.signed_area / self.areaUnit]], frames: [[0, v]], steps: 0, stride: 1,
+      return {kind: kind, vertices: v, t: 0, stopped: null, record: [[0, 1, curve.signed_area / self.areaUnit]], frames: [[0, v]],
               path: element("path", {fill: "none", stroke: FLOW_COLORS[kind], "stroke-width": 2, "vector-effect": "non-scaling-stroke"}, svg),
               label: element("figcaption", {}, figure)};
     });
@@ -1002,18 +1016,22 @@
       run.vertices = next.vertices;
       run.t += next.dt;
       run.record.push([run.t, c.length / this.length0, c.signed_area / this.areaUnit]);
-      run.steps += 1;
-      if (run.steps % run.stride === 0) run.frames.push([run.t, next.vertices]);  // every stride-th step: evenly spread
-      if (run.frames.length > FRAMES) { run.frames = run.frames.filter(function (f, j) { return j % 2 === 0; }); run.stride *= 2; }
+      // a snapshot when the time has moved on by t/FRAMES since the last one (steps are long early and
+      // short late): every moment is within t/FRAMES of one; past 4 FRAMES, spaced again by t/FRAMES
+      if (run.t - run.frames[run.frames.length - 1][0] >= run.t / FRAMES) run.frames.push([run.t, next.vertices]);
+      if (run.frames.length > 4 * FRAMES) {
+        var gap = run.t / FRAMES, last = -Infinity;
+        run.frames = run.frames.filter(function (f) { if (f[0] - last < gap) return false; last = f[0]; return true; });
+      }
     } catch (e) {
       run.stopped = e.message.replace(/^stopped at t = [^:]*: /, "");
     }
     return true;
   };
   Flows.prototype.tmax = function () { return Math.max.apply(null, (this.runs || []).map(function (r) { return r.t; })); };
-  Flows.prototype.next = function () {  // Step: the next recorded time after the one shown, or one step more
+  Flows.prototype.next = function () {  // Step: the next snapshot after the time shown, or one step more
     var after = [];
-    this.runs.forEach(function (r) { r.record.forEach(function (p) { if (p[0] > this.time) after.push(p[0]); }, this); }, this);
+    this.runs.forEach(function (r) { r.frames.concat([[r.t]]).forEach(function (f) { if (f[0] > this.time) after.push(f[0]); }, this); }, this);
     if (after.length) { this.time = Math.min.apply(null, after); return; }
     var open = this.runs.filter(function (r) { return !r.stopped; });
     if (!open.length) { this.status.textContent += " All three have stopped: nothing to step."; return; }

@@ -386,7 +386,9 @@ def test_negative_eps_the_offset_polygon_and_its_reach(browser, book):
                 text = lab.get("lab.inflation.textContent")
                 if np.isfinite(inward):
                     assert float(data["reach"]) == pytest.approx(inward, rel=1e-12)
-                    assert ("swallowtail" in text) == (-eps > inward), (eps, inward, text)
+                    assert ("folds over itself" in text) == (-eps > inward), (eps, inward, text)
+                    reflex = (curve.turning_angles < 0).any()
+                    assert -eps > inward or ("is smaller" in text) == reflex, text  # convex: the set itself
         page.locator(".ddg-lab select").nth(2).select_option("minkowski")
         assert "for ε < 0 choose the offset" in lab.get("lab.inflation.textContent")
     finally:
@@ -493,8 +495,8 @@ def test_the_flow_player(browser, book, view):
             for at, times in shown:
                 assert at == max(x for x in times if x <= time + 1e-15), (value, at)
             assert float(lab.get("lab.flows.shownTime.textContent")) == six(time)
-        # on generated presets the panels show, at every moment, a snapshot fewer steps back than the
-        # stride of the snapshots kept (the ellipse's once stayed at t = 0 until the end)
+        # on generated presets the panels show, at every moment, a snapshot at most t/240 back from the
+        # last step by then (the ellipse's once stayed at t = 0 for half its run: its steps shrink late)
         for query in ("ellipse", "ellipse&n=24", "blob&n=40", "regular&n=30", "star"):
             page.goto(lab.base + PAGE + f"?lab={query}#lab")
             lab.ready()
@@ -502,9 +504,9 @@ def test_the_flow_player(browser, book, view):
             tmax = lab.get("lab.flows.tmax()")
             for value in range(0, 1001, 50):
                 page.locator(".ddg-lab-time input").fill(str(value))
-                for shown, times, stride in lab.get("lab.flows.runs.map(r => [r.shown, r.record.map(p => p[0]), r.stride])"):
-                    now = max(j for j, t in enumerate(times) if t <= value / 1000 * tmax + 1e-15)
-                    assert now - times.index(shown) < stride, (query, value, now, times.index(shown), stride)
+                for shown, times, end in lab.get("lab.flows.runs.map(r => [r.shown, r.record.map(p => p[0]), r.t])"):
+                    now = max(t for t in times if t <= value / 1000 * tmax + 1e-15)
+                    assert now - now / 240 <= shown <= now, (query, value, now, shown, end)
         page.goto(lab.base + PAGE + "?lab=pentagon#lab")
         lab.ready()
         page.locator(".ddg-lab-flows select").select_option(label="fast (3 s)")
@@ -550,7 +552,7 @@ def test_charts_have_axes_and_the_drawing_holds_its_arrows(browser, book):
         lab.page.evaluate(f"() => {{ {LAB}.circles[3].focus(); }}")
         lab.page.keyboard.press("ArrowUp")  # no longer the ellipse's sample: no kappa beside it
         assert lab.page.evaluate(shown) == ["kᵢ of the polygon"] and lab.get("lab.shape.value") == "edited"
-        lab.page.keyboard.press("Control+z")  # back to the preset, untouched
+        lab.page.keyboard.press("Control+z")  # back to the preset, untouched (the keys: the ring's vertex)
         assert lab.page.evaluate(shown) == ["kᵢ of the polygon", "κ(tᵢ) of the smooth curve"]
         assert lab.get("[lab.shape.value, lab.n.value, lab.n.disabled]") == ["ellipse", "10", False]  # n: the star's 10, carried over
         x, y, w, h = map(float, lab.get("lab.svg.getAttribute('viewBox')").split())
@@ -640,5 +642,24 @@ def test_a_vertex_let_go_outside_the_view_is_shown_and_messages_end(browser, boo
         lab.press("Remove vertex")
         lab.press("Undo")
         assert lab.message() == "" and lab.get("lab.vertices[0][0]") < 1.01  # the drag undone
+    finally:
+        lab.close()
+
+
+def test_undo_goes_back_through_presets_with_their_names(browser, book):
+    """Preset after preset, then Undo: each polygon comes back with its own name in the list, its n,
+    and whether n can be changed."""
+    lab = Lab(browser, book, PAGE + "?lab=regular&n=12#lab")
+    page = lab.page
+    try:
+        shape = page.locator(".ddg-lab select").first
+        for name in ("star (chapter 5)", "ellipse", "figure-eight"):
+            shape.select_option(name)
+        for name, n, fixed in (("ellipse", 10, False), ("star (chapter 5)", 10, True), ("regular n-gon", 12, False)):
+            lab.press("Undo")
+            assert lab.get("[lab.shape.value, lab.vertices.length, lab.n.value, lab.n.disabled]") == [name, n, str(n), fixed]
+        assert np.allclose(lab.get("lab.vertices"), ddg.regular_polygon(12).vertices, atol=1e-15)
+        lab.press("Undo")
+        assert lab.message() == "Nothing to undo."
     finally:
         lab.close()

@@ -321,6 +321,7 @@ def test_a_phone_reader_opens_the_chapter_list_by_tapping_the_menu(servers, brow
         target = sections.nth(1).get_attribute("href")
         sections.nth(1).tap()
         page.wait_for_url(f"**/03_winding_number.html{target}")
+        page.wait_for_selector("#pst-secondary-sidebar-modal:not([open])", state="attached", timeout=5000)  # closed
         assert not errors and not outside, (errors, outside)
     finally:
         context.close()
