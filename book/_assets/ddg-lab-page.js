@@ -258,7 +258,7 @@
 
   function Lab(root) {
     var self = this, controls = element("div", {class: "ddg-controls"}, root), edits = element("div", {class: "ddg-controls"}, root);
-    var query = new URLSearchParams(window.location.search), lab = window.ddgLab, told = [];
+    var query = new URLSearchParams(window.location.search), told = [];
     this.root = root;
     root.querySelectorAll(".ddg-lab-static").forEach(function (e) { e.hidden = true; });
     this.shape = control(controls, "shape", element("select", {}, null));
@@ -339,6 +339,7 @@
     this.method.value = INFLATIONS[method] ? method : "";
     this.arrows.checked = query.get("arrows") === "1";
     if (query.has("n")) told.push(this.setN(query.get("n")));
+    if (query.has("n") && (vs !== null || POLYGONS[this.shape.value])) told.push("n in the address is not used: " + (vs !== null ? "the address gives the vertices" : "chapter 5's polygons have their own"));
     if (query.has("eps")) told.push(this.setEps(query.get("eps")));
     if (vs !== null) told.push(this.readVertices(vs));
     this.preset = this.shape.value;
@@ -346,13 +347,14 @@
     this.shape.addEventListener("change", function () { self.reset(); });
     this.n.addEventListener("change", function () {
       var said = self.setN(self.n.value);
-      if (self.presetN !== Number(self.n.value) || said) self.reset(said);  // not again on blur
+      if (self.presetN !== Number(self.n.value)) self.reset(said);  // not again on blur, nor for the same n
+      else self.tell(said);
     });
-    reset.addEventListener("click", function () { self.reset(); });
+    reset.addEventListener("click", function () { self.n.value = self.presetN || self.n.value; self.reset(); });  // the preset as it was
     this.kind.addEventListener("change", function () { self.update(); });
     this.arrows.addEventListener("change", function () { self.fit(); });
     this.method.addEventListener("change", function () { self.fit(); });
-    this.eps.addEventListener("input", function () { self.epsTyped.value = self.eps.value; self.fit(); });
+    this.eps.addEventListener("input", function () { self.sliding = performance.now(); self.epsTyped.value = self.eps.value; self.fit(); });
     this.epsTyped.addEventListener("change", function () { var said = self.setEps(self.epsTyped.value); self.fit(); self.tell(said); });
     this.epsTyped.addEventListener("input", function () {  // as it is typed, when it is already a number in range
       var x = Number(self.epsTyped.value);
@@ -381,26 +383,37 @@
     root.addEventListener("click", unsay, true);
     root.addEventListener("change", unsay, true);
     root.addEventListener("keydown", function (event) {
-      if ((event.ctrlKey || event.metaKey) && event.key.toLowerCase() === "z") { event.preventDefault(); self.undo(); }
+      var typing = /^(INPUT|TEXTAREA|SELECT)$/.test(event.target.tagName);  // Ctrl+Z there undoes the typing
+      if ((event.ctrlKey || event.metaKey) && !event.shiftKey && !typing && event.key.toLowerCase() === "z") { event.preventDefault(); self.undo(); }
+    });
+    document.addEventListener("keydown", function (event) {
       if (event.key === "Escape" && root.classList.contains("ddg-lab-full")) self.fullScreen(false);
     });
     this.dots.addEventListener("keydown", function (event) { self.key(event); });
     this.svg.addEventListener("pointerdown", function (event) { self.down(event); });
     this.svg.addEventListener("pointermove", function (event) {
+      if (event.pointerId !== self.pointer) return;  // one finger at a time
       if (self.panning !== undefined) {  // a finger away from every vertex scrolls the page (the drawing takes every touch)
-        window.scrollBy(0, self.panning - event.clientY);
+        (root.classList.contains("ddg-lab-full") ? root : window).scrollBy(0, self.panning - event.clientY);
         self.panning = event.clientY;
         return;
       }
       if (self.dragging === undefined) return;
-      if (!self.dragMoved) { self.dragMoved = true; self.remember(); }
-      self.vertices[self.dragging] = self.point(event);
+      if (!self.dragMoved) {  // a drag starts after a few pixels: a tap, or a finger's tremor, only selects
+        if (Math.hypot(event.clientX - self.grabbed[0], event.clientY - self.grabbed[1]) < (event.pointerType === "touch" ? 6 : 3)) return;
+        self.dragMoved = true;
+        self.remember();
+      }
+      var p = self.point(event, true), o = self.offsetGrab;  // the vertex keeps its place relative to the pointer
+      self.vertices[self.dragging] = self.snap([p[0] + o[0], p[1] + o[1]]);
       if (!self.frame) self.frame = requestAnimationFrame(function () { self.frame = 0; if (self.dragging !== undefined) self.update(self.dragging); });
     });
-    ["pointerup", "pointercancel"].forEach(function (name) {
-      self.svg.addEventListener(name, function () {
+    ["pointerup", "pointercancel", "lostpointercapture"].forEach(function (name) {
+      self.svg.addEventListener(name, function (event) {
+        if (event.pointerId !== self.pointer) return;
         var i = self.dragging, box = self.svg.getAttribute("viewBox").split(" ").map(Number), v = self.vertices[i];
-        self.dragging = self.panning = undefined;
+        self.dragging = self.panning = self.pointer = undefined;
+        self.quiet(false);
         if (i === undefined) return;
         if (v[0] < box[0] || v[0] > box[0] + box[2] || -v[1] < box[1] || -v[1] > box[1] + box[3]) self.fit();  // let go outside: shown
         else self.update(i);  // where it was let go, on the colour scale of its curvatures
@@ -427,15 +440,15 @@
     return "";
   };
   Lab.prototype.readVertices = function (text) {  // ?v=x0,y0,x1,y1,...: a shared polygon
-    var xs = text.split(",").map(Number);
-    if (xs.length < 6 || xs.length % 2 || !xs.every(isFinite)) return "the address's vertices (v=…) are not pairs of numbers x,y for 3 vertices or more, so the preset is shown";
+    var fields = text.split(","), xs = fields.map(Number);
+    if (xs.length < 6 || xs.length % 2 || !xs.every(isFinite) || fields.some(function (f) { return !f.trim(); })) return "the address's vertices (v=…) are not pairs of numbers x,y for 3 vertices or more, so the preset is shown";
+    if (xs.length > 2 * N_MAX) return "the address has " + xs.length / 2 + " vertices, more than the lab's " + N_MAX + ", so the preset is shown";
     this.vertices = [];
     for (var i = 0; i < xs.length; i += 2) this.vertices.push([xs[i], xs[i + 1]]);
     this.shared = true;
     return "";
   };
   Lab.prototype.show = function () {  // a polygon that is no preset: fitted into view, and called edited
-    this.kappa = null;
     this.edited();
     this.fit();
   };
@@ -447,6 +460,7 @@
   Lab.prototype.tell = function (text) { this.message.textContent = text; };  // refusals, clamps, what was copied
 
   Lab.prototype.down = function (event) {
+    if (event.button !== 0 || (this.pointer !== undefined && event.pointerId !== this.pointer)) return;  // the main button, one pointer
     if (this.drawing) {
       this.remember();
       this.vertices.push(this.point(event));
@@ -456,13 +470,18 @@
     }
     var i = this.nearest(event);
     if (i === undefined) {
-      if (event.pointerType === "touch") { this.panning = event.clientY; this.svg.setPointerCapture(event.pointerId); }
+      if (event.pointerType === "touch") { this.pointer = event.pointerId; this.panning = event.clientY; this.svg.setPointerCapture(event.pointerId); }
       else if (this.circles[this.selected]) { event.preventDefault(); this.circles[this.selected].focus({preventScroll: true}); }  // the keys move it
       return;
     }
     this.dragging = i;  // remembered for Undo when it first moves: a tap only selects
     this.dragMoved = false;
-    this.select(i, true);
+    this.pointer = event.pointerId;
+    this.grabbed = [event.clientX, event.clientY];
+    var p = this.point(event, true);
+    this.offsetGrab = [this.vertices[i][0] - p[0], this.vertices[i][1] - p[1]];
+    this.quiet(true);
+    this.select(i, true, true);
     this.svg.setPointerCapture(event.pointerId);
     event.preventDefault();
   };
@@ -476,30 +495,36 @@
   };
   Lab.prototype.point = function (event, exact) {  // the pointer in data coordinates, to a thousandth of the view
     var m = this.svg.getScreenCTM(), x = (event.clientX - m.e) / m.a, y = (event.clientY - m.f) / m.d;
-    if (exact) return [x, -y];
+    return exact ? [x, -y] : this.snap([x, -y]);
+  };
+  Lab.prototype.snap = function (p) {  // to a thousandth of the view
     var digits = Math.max(0, 3 - Math.floor(Math.log10(this.size))), step = Math.pow(10, -digits);
-    return [x, -y].map(function (z) { return Number((Math.round(z / step) * step).toFixed(digits)) || 0; });
+    return p.map(function (z) { return Number((Math.round(z / step) * step).toFixed(digits)) || 0; });
+  };
+  Lab.prototype.quiet = function (on) {  // no screen reader chatter at every frame of a drag or a flow
+    [this.summary, this.detail, this.inflation].forEach(function (e) { e.setAttribute("aria-live", on ? "off" : "polite"); });
   };
   Lab.prototype.remember = function () {  // for Undo: the polygon before a change (which ends the last message)
     this.tell("");
     this.version++;  // the flows from the polygon before are out of date
-    this.history.push({vertices: this.vertices.map(function (p) { return p.slice(); }), shape: this.shown || "edited", kappa: this.kappa});
+    this.history.push({vertices: this.vertices.map(function (p) { return p.slice(); }), shape: this.shown || "edited", kappa: this.kappa,
+                       preset: this.preset, presetN: this.presetN, drawing: !!this.drawing});
     if (this.history.length > 200) this.history.shift();
     if (!this.resetting) this.edited();
   };
   Lab.prototype.undo = function () {
     if (!this.history.length) { this.tell("Nothing to undo."); return; }
-    var before = this.history.pop();  // the polygon, and whether it was a preset untouched
+    var before = this.history.pop();  // the polygon, whether it was a preset untouched, whether it was being drawn
     this.vertices = before.vertices;
-    if (this.drawing && this.history.length < this.drawFrom) this.toggleDrawing(true);  // back before Draw: drawing ends
+    if (before.drawing !== !!this.drawing) this.drawingMode(before.drawing);
     this.version++;
     this.shape.value = this.shown = before.shape;
     this.kappa = before.kappa;
+    this.preset = before.preset;
+    this.presetN = before.presetN;
     this.n.disabled = !SMOOTH[before.shape];
-    if (before.shape !== "edited") this.presetN = this.vertices.length;
-    this.rebuild();
+    if (this.drawing) this.rebuild(); else this.fit();
   };
-  Lab.prototype.say = function (text) { this.tell(text); };
 
   Lab.prototype.reset = function (said) {  // the preset: n vertices on the smooth curve at t_k, or chapter 5's polygon
     var name = this.shape.value === "edited" ? this.preset : this.shape.value, smooth = SMOOTH[name];
@@ -516,7 +541,7 @@
     if (smooth) this.vertices = t.map(function (s) { return smooth.at(s)[0]; });
     this.kappa = smooth ? t.map(function (s) { return kappa(s, smooth.at); }) : null;  // kappa(t_i), for the chart
     this.selected = 0;
-    if (this.drawing) this.toggleDrawing();
+    if (this.drawing) this.drawingMode(false);
     this.fit();
     if (said) this.tell(said);
   };
@@ -541,22 +566,31 @@
         } else if (this.method.value === "offset") points = points.concat(offsetPolygon(curve, eps));
       } catch (e) { /* said where it is drawn */ }
     }
-    if (points.length) this.size = frame(this.svg, points);
+    var extent = points.length ? Math.max(b[2] - b[0], b[3] - b[1]) : 0;
+    if (points.length && (extent > 1e-9 * (this.size || 1) || !this.size)) this.size = frame(this.svg, points);  // no extent: the view stays
     this.drawGrid();
-    this.rebuild();
+    this.rebuild(true);
   };
   Lab.prototype.drawGrid = function () {  // light lines at round coordinates, behind everything
-    var box = this.svg.getAttribute("viewBox").split(" ").map(Number), step = ticks(0, box[2], 8)[1] || 1, d = [];
-    for (var x = Math.ceil(box[0] / step) * step; x <= box[0] + box[2]; x += step) d.push("M" + x + "," + box[1] + "V" + (box[1] + box[3]));
-    for (var y = Math.ceil(box[1] / step) * step; y <= box[1] + box[3]; y += step) d.push("M" + box[0] + "," + y + "H" + (box[0] + box[2]));
+    var box = this.svg.getAttribute("viewBox").split(" ").map(Number), step = ticks(0, box[2], 8)[1] || 1, d = [], j, z;
+    for (j = Math.ceil(box[0] / step); (z = j * step) <= box[0] + box[2] && d.length < 100; j++) d.push("M" + z + "," + box[1] + "V" + (box[1] + box[3]));
+    for (j = Math.ceil(box[1] / step); (z = j * step) <= box[1] + box[3] && d.length < 200; j++) d.push("M" + box[0] + "," + z + "H" + (box[0] + box[2]));
     this.grid.setAttribute("d", d.join(""));
-    this.gridStep = step;
   };
 
-  Lab.prototype.rebuild = function () {  // new handles: after a preset, an added or removed vertex, drawing, undo
+  Lab.prototype.rebuild = function (keep) {  // new handles: after a preset, an added or removed vertex, drawing, undo
     var self = this, n = this.vertices.length, focused = this.dots.contains(document.activeElement);
     if (this.kappa && this.kappa.length !== n) this.kappa = null;  // no longer the smooth curve's sample
     this.selected = Math.min(this.selected, Math.max(n - 1, 0));
+    if (keep && this.circles && this.circles.length === n) {  // the same handles, sized for the new view
+      this.radius = this.size * Math.max(0.006, Math.min(0.015, 0.5 / n));
+      this.circles.forEach(function (c) { c.setAttribute("r", self.radius); });
+      this.labels.forEach(function (t) { t.setAttribute("font-size", self.size * 0.038); });
+      this.mark.setAttribute("r", 2 * this.radius);
+      this.hoverMark.setAttribute("r", 2.4 * this.radius);
+      this.update();
+      return;
+    }
     this.dots.textContent = "";
     this.numbers.textContent = "";
     this.radius = this.size * Math.max(0.006, Math.min(0.015, 0.5 / n));
@@ -578,11 +612,11 @@
     this.update();
   };
 
-  Lab.prototype.select = function (i, quiet) {
+  Lab.prototype.select = function (i, quiet, focus) {  // focus: the keys move it next (a click on it, Page Up/Down)
     if (this.circles[this.selected]) this.circles[this.selected].setAttribute("tabindex", -1);
     this.selected = i;
     this.circles[i].setAttribute("tabindex", 0);
-    this.circles[i].focus({preventScroll: !!quiet});
+    if (focus) this.circles[i].focus({preventScroll: !!quiet});
   };
   Lab.prototype.hover = function (i) {  // a vertex and its row, found from either
     var v = this.vertices[i], old = this.hovered;
@@ -599,43 +633,36 @@
     var p = v[i], q = v[(i + 1) % n];
     v.splice(i + 1, 0, [(p[0] + q[0]) / 2, (p[1] + q[1]) / 2]);
     this.selected = i + 1;
-    this.rebuild();
-    this.circles[i + 1].focus();
+    this.rebuild();  // the focus stays where it was (on the vertex after Insert, on the button after a press)
   };
   Lab.prototype.remove = function (i) {
-    if (this.vertices.length <= 3) { this.tell("A closed polygon needs at least 3 vertices: vertex " + i + " stays. Add one first, or press Draw for a new polygon."); return; }
+    if (this.vertices.length <= 3) { this.tell("A closed polygon needs at least 3 vertices: vertex " + i + " stays. " + (this.drawing ? "Place more, or press Undo." : "Add one first, or press Draw for a new polygon.")); return; }
     this.remember();
     this.vertices.splice(i, 1);
     this.selected = i % this.vertices.length;
     this.rebuild();
-    this.circles[this.selected].focus();
   };
-  Lab.prototype.toggleDrawing = function (undone) {
-    if (undone) {  // Undo went back to the polygon from before Draw
-      this.drawing = false;
-      this.draw.setAttribute("aria-pressed", "false");
-      this.draw.textContent = "Draw";
-      this.svg.classList.remove("ddg-drawing");
-      this.ghost.setAttribute("d", "");
-      return;
-    }
+  Lab.prototype.drawingMode = function (on) {  // the button, the cursor and the dashed polygon from before
+    this.drawing = on;
+    this.draw.setAttribute("aria-pressed", String(on));
+    this.draw.textContent = on ? "Done" : "Draw";
+    this.svg.classList.toggle("ddg-drawing", on);
+    if (!on) this.ghost.setAttribute("d", "");
+  };
+  Lab.prototype.toggleDrawing = function () {
     if (this.drawing && this.vertices.length < 3) {
       this.tell("A polygon needs at least 3 vertices, and " + this.vertices.length + (this.vertices.length === 1 ? " is" : " are") + " placed: place " + (3 - this.vertices.length) + " more, or press Undo to go back.");
       return;
     }
-    this.drawing = !this.drawing;
-    this.draw.setAttribute("aria-pressed", String(this.drawing));
-    this.draw.textContent = this.drawing ? "Done" : "Draw";
-    this.svg.classList.toggle("ddg-drawing", this.drawing);
-    if (this.drawing) {
+    if (!this.drawing) {
       this.ghost.setAttribute("d", pathOf(this.vertices, true));  // the polygon before, dashed, for scale
-      this.remember();
-      this.drawFrom = this.history.length;
+      this.remember();  // before drawing: Undo back to it ends drawing
+      this.drawingMode(true);
       this.vertices = [];
       this.rebuild();
       this.tell("Click or tap in the plane to place the vertices, clockwise; press Done to finish.");
     } else {
-      this.ghost.setAttribute("d", "");
+      this.drawingMode(false);
       this.tell("");
       this.fit();
     }
@@ -649,7 +676,7 @@
   };
   Lab.prototype.nudge = function (how) {  // the pad: to the previous or next vertex, or the selected one moved
     var n = this.vertices.length, i = this.selected, v = this.vertices[i];
-    if (!v || this.drawing) { this.tell("Press Done first: while drawing, there is no polygon to move."); return; }
+    if (!v) { this.tell("No vertex yet: click or tap in the plane to place one."); return; }
     if (typeof how === "number") { this.select((i + how + n) % n, true); this.update(); return; }
     this.remember();
     this.move(i, [v[0] + how[0], v[1] + how[1]]);
@@ -664,7 +691,7 @@
   };
   Lab.prototype.address = function () {
     var q = [];
-    if (this.shape.value === "edited") q.push("v=" + this.vertices.map(function (p) { return String(p[0]) + "," + String(p[1]); }).join(","));
+    if (this.shape.value === "edited") q.push("v=" + this.vertices.map(function (p) { return encodeURIComponent(p[0]) + "," + encodeURIComponent(p[1]); }).join(","));
     else {
       var name = Object.keys(SHORT_NAMES).filter(function (k) { return SHORT_NAMES[k] === this.shape.value; }, this)[0];
       q.push("lab=" + name);
@@ -679,7 +706,7 @@
     var self = this, box = this.copied;
     box.hidden = false;
     box.value = text;
-    var fallback = function () { box.select(); self.tell("Your browser did not let the page copy: the text is selected below; copy it (Ctrl+C, or a long press on a phone)."); };
+    var fallback = function () { box.focus(); box.select(); self.tell("Your browser did not let the page copy: the text is selected below; copy it (Ctrl+C, or a long press on a phone)."); };
     if (!navigator.clipboard) { fallback(); return; }
     navigator.clipboard.writeText(text).then(function () { self.tell("Copied " + what + "."); }, fallback);
   };
@@ -688,12 +715,12 @@
     var i = event.target.index, n = this.vertices.length, step = (event.shiftKey ? 0.1 : 0.01);
     var moves = {ArrowLeft: [-step, 0], ArrowRight: [step, 0], ArrowUp: [0, step], ArrowDown: [0, -step]};
     var to = {PageUp: i - 1, PageDown: i + 1, Home: 0, End: n - 1}[event.key];
-    if (i === undefined) return;
+    if (i === undefined || event.ctrlKey || event.metaKey || event.altKey) return;  // Ctrl and +/-: the browser's zoom
     if (event.key === "Insert" || event.key === "+") { event.preventDefault(); this.add(i); return; }
     if (event.key === "Delete" || event.key === "-" || event.key === "Backspace") { event.preventDefault(); this.remove(i); return; }
     if (!(event.key in moves || to !== undefined)) return;
     event.preventDefault();
-    if (to !== undefined) { this.select((to + n) % n); this.update(); return; }
+    if (to !== undefined) { this.select((to + n) % n, false, true); this.update(); return; }
     var v = this.vertices[i];
     this.remember();
     this.move(i, [v[0] + moves[event.key][0], v[1] + moves[event.key][1]]);
@@ -724,7 +751,7 @@
     this.path.setAttribute("d", pathOf(v, !this.drawing));
     if (Number(this.n.value) !== n && document.activeElement !== this.n) this.n.value = n;  // the polygon's own n
     ["turningNumber", "length", "signedArea"].forEach(function (name) { delete s.dataset[name]; });
-    try { curve = new lab.DiscreteCurve(v); } catch (e) { parts.push(this.drawing ? "Drawing: " + n + " vertices placed." : "Not a polygon the lecture allows: " + e.message + "."); }
+    try { curve = new lab.DiscreteCurve(v); } catch (e) { parts.push(this.drawing ? "Drawing: " + n + (n === 1 ? " vertex" : " vertices") + " placed." : "Not a polygon the lecture allows: " + e.message + "."); }
     if (curve) {
       tol = this.tolerance = noise(curve);
       KINDS.forEach(function (name) {
@@ -834,7 +861,7 @@
    * polygon moved inward, its signed area, and its reach. */
   Lab.prototype.inflate = function (curve, k) {
     var method = this.method.value, eps = Number(this.eps.value), p = this.inflation, self = this, formula;
-    if (Number(this.epsTyped.value) !== eps) this.epsTyped.value = eps;  // written only when it changed: a drag
+    if (Number(this.epsTyped.value) !== eps && document.activeElement !== this.epsTyped) this.epsTyped.value = eps;  // written only when it changed: a drag
     if (this.eps.disabled !== !method) this.eps.disabled = this.epsTyped.disabled = !method;  // updates at every frame
     clearTimeout(this.measuring);
     this.region.setAttribute("d", "");
@@ -896,7 +923,7 @@
       var difference = formula - area;
       p.textContent = said + "; the region (shaded), the polygon with these pieces united, measures " + short(area) +
         ": formula − region = " + (Math.abs(difference) <= tol.area + ROUNDING * Math.abs(area) ? "0" : Number(difference.toPrecision(2))) + ".";
-    }, this.dragging !== undefined ? 150 : 0);
+    }, this.dragging !== undefined || performance.now() - (this.sliding || -1e9) < 300 ? 150 : 0);  // measured when the hand rests
   };
 
   Lab.prototype.arrowsPath = function (g) {  // grad L at each vertex, the longest a fifth of the polygon's extent
@@ -945,7 +972,7 @@
    * the one furthest behind in time first, so all three reach the same moments. Computing runs ahead
    * while playing; a player shows the recorded run at time `time`, at a chosen speed, or where the
    * time slider puts it. */
-  var FRAMES = 240;  // snapshots kept per flow: every step, thinned to every other when there are more
+  var FRAMES = 240;  // snapshots kept per flow: one each t/FRAMES of time (flows.step)
   function Flows(lab, root) {
     var self = this, controls = element("div", {class: "ddg-controls"}, root), player = element("div", {class: "ddg-controls"}, root);
     this.lab = lab;
@@ -953,7 +980,7 @@
     this.play = button(controls, "Play", "play or pause the flows (a long run stops computing while paused)");
     this.play.setAttribute("aria-pressed", "false");
     this.play.style.minWidth = "4.6em";  // Play and Pause the same width: Step stays where it is
-    this.stepButton = button(controls, "Step", "to the next step of the flow furthest behind");
+    this.stepButton = button(controls, "Step", "to the next snapshot of the flows, or one step of the flow furthest behind");
     this.speed = control(controls, "speed", element("select", {}, null));
     Object.keys(SPEEDS).forEach(function (s) { element("option", {value: SPEEDS[s]}, self.speed).textContent = s; });
     this.speed.value = 10;
@@ -969,7 +996,13 @@
     this.status = element("p", {class: "ddg-summary ddg-lab-flow-status", "aria-live": "polite"}, root);
     this.start.addEventListener("click", function () { self.begin(); });
     this.play.addEventListener("click", function () { self.toggle(); });
-    this.stepButton.addEventListener("click", function () { self.pause(); if (!self.runs) self.begin(); self.next(); self.draw(); });
+    this.stepButton.addEventListener("click", function () {
+      self.pause();
+      if (!self.runs) self.begin();
+      if (!self.runs) return;  // no flow from this polygon: begin() said why
+      self.next();
+      self.draw();
+    });
     this.slider.addEventListener("input", function () { self.pause(); self.time = Number(self.slider.value) / 1000 * self.tmax(); self.draw(true); });
   }
   Flows.prototype.clear = function (why) {  // the polygon changed: the runs no longer belong to it
@@ -1017,9 +1050,9 @@
       run.t += next.dt;
       run.record.push([run.t, c.length / this.length0, c.signed_area / this.areaUnit]);
       // a snapshot when the time has moved on by t/FRAMES since the last one (steps are long early and
-      // short late): every moment is within t/FRAMES of one; past 4 FRAMES, spaced again by t/FRAMES
+      // short late): every moment is within t/FRAMES of one; past 2 FRAMES, spaced again by t/FRAMES
       if (run.t - run.frames[run.frames.length - 1][0] >= run.t / FRAMES) run.frames.push([run.t, next.vertices]);
-      if (run.frames.length > 4 * FRAMES) {
+      if (run.frames.length > 2 * FRAMES) {
         var gap = run.t / FRAMES, last = -Infinity;
         run.frames = run.frames.filter(function (f) { if (f[0] - last < gap) return false; last = f[0]; return true; });
       }
@@ -1034,7 +1067,7 @@
     this.runs.forEach(function (r) { r.frames.concat([[r.t]]).forEach(function (f) { if (f[0] > this.time) after.push(f[0]); }, this); }, this);
     if (after.length) { this.time = Math.min.apply(null, after); return; }
     var open = this.runs.filter(function (r) { return !r.stopped; });
-    if (!open.length) { this.status.textContent += " All three have stopped: nothing to step."; return; }
+    if (!open.length) { this.note = "All three have stopped: nothing to step."; return; }
     var run = open.reduce(function (a, b) { return b.t < a.t ? b : a; });
     this.step();
     this.time = Math.max(this.time, run.t);
@@ -1079,8 +1112,10 @@
       var done = r.stopped && a === f.length - 1;
       r.label.textContent = r.kind + " flow, t = " + short(f[a][0]) + (done ? ": stopped (" + rule(r.stopped) + ")" : "");
       r.record.forEach(function (p) { lo = Math.min(lo, p[2]); hi = Math.max(hi, p[2]); });
-      series.push({color: FLOW_COLORS[r.kind], points: r.record.map(function (p) { return [p[0], p[1]]; })},
-                  {color: FLOW_COLORS[r.kind], dashed: true, points: r.record.map(function (p) { return [p[0], p[2]]; })});
+      var every = Math.ceil(r.record.length / 600), last = r.record.length - 1;  // at most 600 points a line
+      var plotted = every > 1 ? r.record.filter(function (p, j) { return j % every === 0 || j === last; }) : r.record;
+      series.push({color: FLOW_COLORS[r.kind], points: plotted.map(function (p) { return [p[0], p[1]]; })},
+                  {color: FLOW_COLORS[r.kind], dashed: true, points: plotted.map(function (p) { return [p[0], p[2]]; })});
       if (r.stopped) marks.push({x: r.t, color: FLOW_COLORS[r.kind], label: rule(r.stopped), row: j});
     });
     marks.push({x: time, color: "currentColor"});
@@ -1089,7 +1124,9 @@
     this.shownTime.textContent = short(time);
     this.caption.textContent = "Above: the length L/L(0) (solid) and the signed area A/" + (this.areaUnit === Math.abs(this.area0) ? "|A(0)|" : "(L(0)²/4π)") +
       " (dashed) of each flow against time t, from 0 to " + short(tmax) + "; angle blue, sine orange, tangent green; a dotted line where a flow stopped, named by the rule that stopped it; the solid upright line is the time shown.";
-    this.status.textContent = this.runs.map(function (r) {
+    var note = this.note || "";
+    this.note = "";
+    this.status.textContent = (note ? note + " " : "") + this.runs.map(function (r) {
       return r.kind + " flow: " + (r.stopped ? "stopped at t = " + short(r.t) + ": " + r.stopped : "computed to t = " + short(r.t) + " (" + (r.record.length - 1) + " steps), length " + short(r.record[r.record.length - 1][1] * this.length0)) + ".";
     }, this).join(" ");
   };

@@ -268,7 +268,7 @@ def addresses(count, seed):
         if rng.random() < 0.4:
             q["kind"] = pick("angle", "sine", "tangent", "circle", "curly")
         if rng.random() < 0.25:
-            q["v"] = pick("0,0,0,1,1,1", "0,0,1", "0,0,0,1,x,1", "0,1,1,0,0,-1,-1,0", "", "1e400,0,0,1,1,1")
+            q["v"] = pick("0,0,0,1,1,1", "0,0,1", "0,0,0,1,x,1", "0,1,1,0,0,-1,-1,0", "", "1e400,0,0,1,1,1", "0,0,,1,1,1")
         yield q
 
 
@@ -661,5 +661,40 @@ def test_undo_goes_back_through_presets_with_their_names(browser, book):
         assert np.allclose(lab.get("lab.vertices"), ddg.regular_polygon(12).vertices, atol=1e-15)
         lab.press("Undo")
         assert lab.message() == "Nothing to undo."
+    finally:
+        lab.close()
+
+
+def test_a_tap_selects_and_what_undo_and_step_leave(browser, book):
+    """A click beside a vertex (within reach, no movement) selects it and moves nothing; a drag keeps
+    the vertex where it was relative to the pointer; Undo after a preset change gives Reset that
+    preset back; Step on a polygon that cannot flow says why; Ctrl+Z in the eps box is the box's."""
+    lab = Lab(browser, book, PAGE + "?lab=regular&n=8&inflate=offset#lab")
+    page = lab.page
+    try:
+        start = lab.get("lab.vertices.map(p => p.slice())")
+        x, y = page.evaluate(f"() => {{ const c = {LAB}.circles[3].getBoundingClientRect(); return [c.x + c.width / 2, c.y + c.height / 2]; }}")
+        page.mouse.click(x + 8, y - 5)
+        assert lab.get("lab.selected") == 3 and lab.get("lab.vertices") == start and lab.get("lab.shape.value") == "regular n-gon"
+        page.mouse.move(x + 8, y - 5)
+        page.mouse.down()
+        page.mouse.move(x + 48, y - 5, steps=5)
+        page.mouse.up()
+        moved, scale = lab.get("lab.vertices[3]"), lab.get("lab.svg.getScreenCTM().a")
+        assert np.allclose((np.array(moved) - start[3]) * scale, [40, 0], atol=1.5), (moved, start[3])
+        page.locator(".ddg-lab select").first.select_option("star (chapter 5)")
+        lab.press("Undo")  # the dragged octagon again
+        lab.press("Undo")  # the octagon as preset
+        lab.press("Reset")
+        assert lab.get("[lab.shape.value, lab.vertices.length]") == ["regular n-gon", 8]
+        box = page.locator(".ddg-lab input[aria-label='ε typed']")
+        box.click()
+        box.press("Control+a")
+        box.press_sequentially("0.3")
+        box.press("Control+z")
+        assert lab.get("lab.vertices.length") == 8 and lab.get("lab.shape.value") == "regular n-gon"
+        lab.press("Draw")
+        lab.press("Step")  # no polygon: said, no error
+        assert "No flow" in lab.get("lab.flows.status.textContent")
     finally:
         lab.close()
