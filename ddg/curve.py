@@ -58,7 +58,7 @@ class DiscreteCurve:
     """
 
     def __init__(self, vertices, closed=True):
-        self.closed = nx.flag(closed, "closed")
+        self._closed = nx.flag(closed, "closed")
         raw = np.asarray(vertices)
         if raw.dtype.kind not in "iufO":
             raise ValueError(f"vertices must be real numbers, got {raw.dtype} values (e.g. {raw.flat[0]!r})")
@@ -88,6 +88,20 @@ class DiscreteCurve:
 
     def __len__(self):
         return len(self._v)
+
+    @property
+    def closed(self):
+        """Whether the last vertex is joined to the first, read-only: every cached value depends on it.
+
+        >>> DiscreteCurve([[0, 0], [1, 0], [1, 1]], closed=False).closed
+        False
+        """
+        return self._closed
+
+    @closed.setter
+    def closed(self, value):
+        raise AttributeError("closed is read-only (the curve's edges, angles and curvatures were computed for it); "
+                             "make a new curve instead: DiscreteCurve(curve.vertices, closed=...)")
 
     def __repr__(self):
         return f"DiscreteCurve(n={len(self)}, {'closed' if self.closed else 'open'}, length={self.length:.6g})"
@@ -245,6 +259,9 @@ class DiscreteCurve:
         if F.shape not in ((n,), (n, 2)):
             raise ValueError(f"{name} must be a discrete function with one value per vertex, shape ({n},) "
                              f"or ({n}, 2); got shape {F.shape}")
+        bad = np.flatnonzero(~np.isfinite(F.reshape(n, -1)).all(axis=1))
+        if len(bad):
+            raise ValueError(f"{name} has a NaN or infinite value at vertex {bad[0]}: {F[bad[0]]}")
         return F
 
     # ------------------------------------------------------- curvature (lecture §3.2-3.4)

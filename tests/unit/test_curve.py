@@ -332,3 +332,28 @@ def test_length_gradient_is_sine_curvature_times_bisector_normal(v):
 def test_bisector_normals_point_outward_on_a_clockwise_polygon():
     c = ddg.regular_polygon(7, 2.0)
     np.testing.assert_allclose(c.bisector_normals, c.vertices / 2.0, atol=1e-12)
+
+
+@pytest.mark.parametrize("value", [True, False, "yes", 1, None])
+def test_closed_is_read_only_whatever_is_assigned(value):
+    """Assigning closed after the fact once corrupted the caches (an open square's inflated area came
+    out 7.14 instead of 5 + pi); now every assignment is refused and the curve keeps its answers."""
+    square = [[0, 0], [0, 1], [1, 1], [1, 0]]
+    c = ddg.DiscreteCurve(square, closed=False)
+    length = c.length
+    with pytest.raises(AttributeError, match="closed is read-only"):
+        c.closed = value
+    assert c.closed is False and c.length == length == 3
+    closed = ddg.DiscreteCurve(square)
+    assert closed.inflated_area(1) == pytest.approx(5 + np.pi)
+
+
+@pytest.mark.parametrize("bad, where", [(np.nan, 2), (np.inf, 0), (-np.inf, 4)])
+def test_a_discrete_function_with_nan_is_refused_naming_the_vertex(bad, where):
+    c = ddg.regular_polygon(6)
+    for F in (np.ones(6), np.ones((6, 2))):
+        F = F.copy()
+        F[where] = bad
+        for call in (c.laplacian, lambda F: c.inner(F, F)):
+            with pytest.raises(ValueError, match=f"NaN or infinite value at vertex {where}"):
+                call(F)
