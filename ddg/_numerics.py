@@ -56,6 +56,14 @@ def flag(value, name):
     return bool(value)
 
 
+def require_finite(values, say):
+    """Raise ``ValueError(say(i))`` at the first row ``i`` of ``values`` holding a NaN or an infinity."""
+    finite = np.isfinite(values)
+    bad = np.flatnonzero(~(finite if finite.ndim == 1 else finite.all(axis=1)))
+    if len(bad):
+        raise ValueError(say(int(bad[0])))
+
+
 def frozen(array):
     """A read-only copy of ``array`` that cannot be made writable again.
 

@@ -72,9 +72,7 @@ class DiscreteCurve:
         if len(v) < minimum:
             raise ValueError(f"{'a closed' if self.closed else 'an open'} discrete curve needs at least "
                              f"{minimum} vertices, got {len(v)}")
-        bad = np.flatnonzero(~np.isfinite(v).all(axis=1))
-        if len(bad):
-            raise ValueError(f"vertex {bad[0]} has a NaN or infinite coordinate: {v[bad[0]]}")
+        nx.require_finite(v, lambda i: f"vertex {i} has a NaN or infinite coordinate: {v[i]}")
         self._v = nx.frozen(v)
         lengths = self.edge_lengths
         if not np.isfinite(lengths).all():
@@ -91,17 +89,12 @@ class DiscreteCurve:
 
     @property
     def closed(self):
-        """Whether the last vertex is joined to the first, read-only: every cached value depends on it.
-
-        >>> DiscreteCurve([[0, 0], [1, 0], [1, 1]], closed=False).closed
-        False
-        """
+        """Whether the last vertex is joined to the first; read-only, as every cached value depends on it."""
         return self._closed
 
     @closed.setter
     def closed(self, value):
-        raise AttributeError("closed is read-only (the curve's edges, angles and curvatures were computed for it); "
-                             "make a new curve instead: DiscreteCurve(curve.vertices, closed=...)")
+        raise AttributeError("closed is read-only: make a new curve, DiscreteCurve(curve.vertices, closed=...)")
 
     def __repr__(self):
         return f"DiscreteCurve(n={len(self)}, {'closed' if self.closed else 'open'}, length={self.length:.6g})"
@@ -259,9 +252,7 @@ class DiscreteCurve:
         if F.shape not in ((n,), (n, 2)):
             raise ValueError(f"{name} must be a discrete function with one value per vertex, shape ({n},) "
                              f"or ({n}, 2); got shape {F.shape}")
-        bad = np.flatnonzero(~np.isfinite(F.reshape(n, -1)).all(axis=1))
-        if len(bad):
-            raise ValueError(f"{name} has a NaN or infinite value at vertex {bad[0]}: {F[bad[0]]}")
+        nx.require_finite(F, lambda i: f"{name} has a NaN or infinite value at vertex {i}: {F[i]}")
         return F
 
     # ------------------------------------------------------- curvature (lecture §3.2-3.4)
@@ -294,12 +285,9 @@ class DiscreteCurve:
                     k = 4 * np.sin(psi / 2) / two_A              # eq. (3)
                 else:
                     k = 4 * self._tan_half_psi / two_A           # eq. (4): tan(psi/2), accurate near pi
-            bad = np.flatnonzero(~np.isfinite(k))
-            if len(bad):
-                j = bad[0]
-                raise ValueError(f"the {kind} curvature at vertex {self._vertex_index(j)} is beyond the largest "
-                                 f"float (a turn of {np.degrees(psi[j]):.6g} degrees between edges "
-                                 f"{two_A[j] / 2:.3g} long on average)")
+            nx.require_finite(k, lambda j: f"the {kind} curvature at vertex {self._vertex_index(j)} is beyond the "
+                              f"largest float (a turn of {np.degrees(psi[j]):.6g} degrees between edges "
+                              f"{two_A[j] / 2:.3g} long on average)")
             cache[kind] = nx.frozen(k)
         return cache[kind]
 
@@ -428,9 +416,7 @@ def _boundary(points, vertex, eps):
     Repeated points (an arc of zero angle, a step below rounding) are dropped; errors name the
     vertex of the input curve.
     """
-    bad = np.flatnonzero(~np.isfinite(points).all(axis=1))
-    if len(bad):
-        raise ValueError(f"inflating by eps = {eps:g} overflows at vertex {vertex[bad[0]]}")
+    nx.require_finite(points, lambda j: f"inflating by eps = {eps:g} overflows at vertex {vertex[j]}")
     keep = (points != nx.previous(points)).any(axis=1)
     if keep.sum() < 3:
         raise ValueError(f"the boundary inflated by eps = {eps:g} collapses to fewer than 3 points")
