@@ -3,7 +3,8 @@
 A small reference implementation to read next to the lecture. It needs numpy only; plotting
 (``ddg.plot``), the explorers (``ddg.explore``) and the homework checks (``ddg.checks``) need the
 extras named in their error messages. Conventions: clockwise is
-positive (a clockwise circle has curvature ``+1/r`` and outward normals ``N = J T``).
+positive (a clockwise circle has curvature ``+1/r`` and outward normals ``N = J T``). What it
+refuses it refuses as one of the errors of ``ddg.errors``, all of them ``ValueError``.
 
 >>> import ddg
 >>> square = ddg.DiscreteCurve([[0, 0], [0, 1], [1, 1], [1, 0]])   # clockwise
@@ -13,10 +14,13 @@ positive (a clockwise circle has curvature ``+1/r`` and outward normals ``N = J 
 
 import importlib
 
-from . import flow, smooth
-from .curve import CURVATURES, INFLATIONS, DiscreteCurve, regular_polygon
+from . import errors, flow, smooth
+from .curve import CURVATURES, INFLATIONS, DiscreteCurve
+from .polygons import regular_polygon
+from .errors import CurveError, DegenerateCurveError, InputError, OpenCurveError, OutOfRangeError
 
-__all__ = ["CURVATURES", "INFLATIONS", "DiscreteCurve", "regular_polygon", "flow", "smooth"]
+__all__ = ["CURVATURES", "INFLATIONS", "DiscreteCurve", "regular_polygon", "flow", "smooth", "errors", "CurveError",
+           "DegenerateCurveError", "InputError", "OpenCurveError", "OutOfRangeError"]
 __version__ = "0.1.0"
 
 # The geometry above needs numpy only. These parts need more (matplotlib, ipywidgets, shapely):

@@ -12,6 +12,8 @@ import numbers
 
 import numpy as np
 
+from .errors import InputError, OutOfRangeError
+
 SAFE = 1e-150, 1e150
 """Edge lengths in this range have squares and pairwise products far from under- and overflow."""
 
@@ -23,55 +25,153 @@ ABOVE_MINUS_PI = np.nextafter(-np.pi, 0.0)
 
 
 def choose(value, valid, what):
-    """``value`` if it is one of ``valid``, else a ``ValueError`` listing the choices."""
+    """``value`` if it is one of ``valid``, else an ``InputError`` listing the choices."""
     if not isinstance(value, str) or value not in valid:
-        raise ValueError(f"unknown {what} {value!r}; choose one of {', '.join(map(repr, valid))}")
+        raise InputError(f"unknown {what} {value!r}; choose one of {', '.join(map(repr, valid))}")
     return value
 
 
 def real(value, name, minimum=None, strict=False):
-    """``value`` as a finite float, or a ``ValueError`` naming ``name``: no NaN, no arrays, no complex."""
+    """``value`` as a finite float, or an ``InputError`` naming ``name``: no NaN, no arrays, no complex."""
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
-        raise ValueError(f"{name} must be a real number, got {value!r}")
-    value = float(value)
+        raise InputError(f"{name} must be a real number, got {value!r}")
+    try:
+        value = float(value)
+    except OverflowError:  # an int beyond the floats
+        raise OutOfRangeError(f"{name} is beyond the largest float (about 1.8e308), got {value:.3g}") from None
     if not math.isfinite(value):
-        raise ValueError(f"{name} must be finite, got {value!r}")
+        raise InputError(f"{name} must be finite, got {value!r}")
     if minimum is not None and (value <= minimum if strict else value < minimum):
         bound = "positive" if strict and minimum == 0 else f"{'>' if strict else '>='} {minimum:g}"
-        raise ValueError(f"{name} must be {bound}, got {value!r}")
+        raise InputError(f"{name} must be {bound}, got {value!r}")
     return value
 
 
-def count(value, name, minimum):
-    """``value`` as an ``int`` of at least ``minimum``, or a ``ValueError`` (no bools, no floats)."""
+def count(value, name, minimum, maximum=None):
+    """``value`` as an ``int`` in ``[minimum, maximum]``, or an ``InputError`` (no bools, no floats)."""
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral) or value < minimum:
-        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+        raise InputError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    if maximum is not None and value > maximum:
+        raise OutOfRangeError(f"{name} must be at most {maximum}, got {value!r}")
     return int(value)
 
 
 def flag(value, name):
     """``value`` if it is ``True`` or ``False`` (a truthy string such as ``"no"`` is refused)."""
     if not isinstance(value, (bool, np.bool_)):
-        raise ValueError(f"{name} must be True or False, got {value!r}")
+        raise InputError(f"{name} must be True or False, got {value!r}")
     return bool(value)
 
 
-def require_finite(values, say):
-    """Raise ``ValueError(say(i))`` at the first row ``i`` of ``values`` holding a NaN or an infinity."""
+def require_finite(values, say, error=None):
+    """Raise ``error(say(i))`` (an ``InputError`` by default) at the first row ``i`` of ``values`` that
+    holds a NaN or an infinity. One sum decides for all rows but where an entry is not finite."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        if np.isfinite(np.add.reduce(values, axis=None)):
+            return
     finite = np.isfinite(values)
     bad = np.flatnonzero(~(finite if finite.ndim == 1 else finite.all(axis=1)))
     if len(bad):
-        raise ValueError(say(int(bad[0])))
+        raise (error or InputError)(say(int(bad[0])))
 
 
-def frozen(array):
-    """A read-only copy of ``array`` that cannot be made writable again.
+def _real_or_why(x):
+    """An object array's entry as a float, or a string saying why it is not one."""
+    if isinstance(x, (bool, np.bool_)) or not isinstance(x, numbers.Real):
+        return "that is not a real number"
+    try:
+        return float(x)
+    except OverflowError:
+        return "beyond the largest float (about 1.8e308)"
 
-    ``flags.writeable = False`` alone can be undone, and a view's ``base`` is writable; an array
-    over an immutable ``bytes`` buffer is neither.
+
+def _short(x):
+    """``repr(x)``, cut short (a Python int can have thousands of digits)."""
+    text = repr(x.tolist() if isinstance(x, np.ndarray) else x)
+    return text if len(text) <= 60 else f"{text[:24]}...{text[-8:]} ({len(text)} characters)"
+
+
+def values(data, name, what="vertex", columns=None):
+    """``data`` as a new float array, or an ``InputError`` naming the row at fault (``what`` and its index).
+
+    Refused: text (even text that reads as a number), complex numbers and booleans; rows of
+    different lengths; masked entries; NaN and infinities; and numbers beyond the largest float
+    (``OutOfRangeError``). ``columns`` is the length every row must have (``None``: any).
     """
-    array = np.ascontiguousarray(array, dtype=float)
-    return np.frombuffer(array.tobytes(), dtype=float).reshape(array.shape)
+    def say(i, problem):
+        if name == "vertices":
+            return f"{what} {i} has a {problem.replace('value', 'coordinate')}"
+        return f"{name} has a {problem.replace(':', f' at {what} {i}:', 1) if ':' in problem else problem}"
+
+    if isinstance(data, np.ma.MaskedArray):
+        masked = np.ma.getmaskarray(data)
+        if masked.any():
+            i = int(np.flatnonzero(masked.reshape(len(masked), -1).any(axis=1))[0]) if masked.ndim else 0
+            raise InputError(say(i, f"masked value: {data[i]}; drop or fill masked entries first (np.ma.compress_rows)"))
+        data = data.data
+    try:
+        raw = np.asarray(data)
+    except ValueError:  # rows of different lengths
+        lengths = [np.size(row) if np.ndim(row) else -1 for row in data]
+        i = next((i for i, k in enumerate(lengths) if k != (columns or lengths[0])), 0)
+        raise InputError(f"{name} must be rows of {columns or lengths[0]} numbers: {what} {i} is {data[i]!r}") from None
+    if raw.dtype == object:
+        converted = np.frompyfunc(_real_or_why, 1, 1)(raw)
+        why = np.frompyfunc(lambda x: isinstance(x, str), 1, 1)(converted).astype(bool)
+        if why.any():
+            i = np.argwhere(why)[0] if why.ndim else ()
+            problem = converted[tuple(i)]
+            error = OutOfRangeError if "beyond" in problem else InputError
+            raise error(say(i[0] if len(i) else 0, f"value {problem}: {_short(raw[tuple(i)])}"))
+        raw = converted.astype(float)
+    elif raw.dtype.kind not in "iuf":
+        sample = f": {what} 0 is {_short(raw[0])}" if raw.size else ""
+        raise InputError(f"{name} must be real numbers, got {raw.dtype} values{sample}")
+    with np.errstate(over="ignore"):
+        v = np.array(raw, dtype=float)
+    if columns and (v.ndim != 2 or v.shape[1] != columns):
+        raise InputError(f"{name} must have shape (n, {columns}), got shape {v.shape}")
+
+    with np.errstate(over="ignore", invalid="ignore"):
+        if not np.isfinite(np.add.reduce(v, axis=None)):
+            finite = np.isfinite(v)
+            i = int(np.flatnonzero(~(finite if finite.ndim == 1 else finite.all(axis=1)))[0])
+            if raw.dtype.kind in "iu" or bool(np.isfinite(raw[i]).all()):  # long double, or a huge Python int
+                raise OutOfRangeError(say(i, f"value beyond the largest float (about 1.8e308): {raw[i]}"))
+            raise InputError(say(i, f"NaN or infinite value: {v[i]}"))
+    return v
+
+
+def discrete_function(F, n, name):
+    """``F`` as a discrete function on ``n`` vertices, shape ``(n,)`` or ``(n, 2)``, or an ``InputError``."""
+    F = values(F, name)
+    if F.shape not in ((n,), (n, 2)):
+        raise InputError(f"{name} must be a discrete function with one value per vertex, shape ({n},) "
+                         f"or ({n}, 2); got shape {F.shape}")
+    return F
+
+
+def points(data, what):
+    """``data`` as a new float array of shape ``(n, 2)``, checked as :func:`values` checks."""
+    return values(data, "vertices", what, columns=2)
+
+
+def point(data, name):
+    """``data`` as one finite point ``(x, y)``, or an ``InputError``."""
+    if np.iscomplexobj(data) or np.shape(data) != (2,):
+        raise InputError(f"{name} must be a point (x, y), got {data!r}")
+    return values(np.reshape(np.asarray(data, dtype=object), (1, 2)), name, "point", columns=2)[0]
+
+
+def frozen(array, dtype=float):
+    """``array`` as an array that cannot be written to, nor made writable again, without a copy.
+
+    ``flags.writeable = False`` alone can be undone, and so can a writable ``base``'s; an array
+    over a read-only memory view refuses both (numpy asks the view, which says no).
+    """
+    array = np.ascontiguousarray(array, dtype=dtype)
+    array.flags.writeable = False
+    return np.frombuffer(memoryview(array).toreadonly(), dtype=dtype).reshape(array.shape)
 
 
 # ------------------------------------------------------------------------- along the curve
@@ -106,30 +206,143 @@ def lengths(vectors):
     return np.hypot(x, y)
 
 
-def tan_half_turn(a, b):
+def unit(vectors, norms):
+    """``vectors / norms`` row by row, each row first scaled by a power of two (exactly) where a norm
+    lies outside :data:`SAFE`, so that subnormal rows keep every bit they have."""
+    if len(norms) and SAFE[0] < norms.min() and norms.max() < SAFE[1]:
+        return vectors / norms[:, None]
+    e = np.frexp(norms)[1]
+    return np.ldexp(vectors, -e[:, None]) / np.ldexp(norms, -e)[:, None]
+
+
+def tan_half_turn(a, b, la, lb, v, first):
     """``tan(psi / 2)`` for the clockwise turn ``psi`` from each row of ``a`` to the row of ``b``.
 
-    With ``|a||b| sin psi = -(a x b)`` (clockwise is positive) and ``|a||b| cos psi = a . b``,
+    ``a[j]`` and ``b[j]`` are the edges into and out of vertex ``v[first + j]`` (``la``, ``lb`` their
+    lengths). With ``|a||b| sin psi = -(a x b)`` (clockwise is positive) and ``|a||b| cos psi = a . b``,
 
         tan(psi/2) = -(a x b) / (|a||b| + a . b) = (|a||b| - a . b) / -(a x b).
 
-    The first form is used where ``a . b >= 0``, the second where the turn exceeds a right angle:
-    each avoids cancellation in its half, so the result is accurate even for a turn a rounding error
-    away from ``pi``, where ``psi`` itself cannot tell ``pi - 1e-17`` from ``pi``. Where the edges
-    point in exactly opposite directions the result is ``+inf`` (``psi = pi``). Both forms are
-    homogeneous in ``a`` and in ``b``, so each row is first scaled by a power of two to a length in
-    ``[1/2, 1)``: exactly, so the result is the same at every scale, and no product under- or
-    overflows, however small the turn's sine.
+    The first form is used where ``a . b >= 0``, the second where the turn exceeds a right angle;
+    neither cancels in its half but for the cross product, which near a turn straight back is a
+    difference of two nearly equal products. So where ``|a x b| < |a||b| / 8`` and ``a . b < 0``
+    (a turn within about 7 degrees of ``pi``) the cross product is recomputed from the vertices
+    themselves: each edge is kept with its rounding error (Knuth's two-sum) and each product as
+    two floats (Dekker), and the 16 terms are added without rounding error (:func:`exact_sum`).
+    There ``tan(psi/2)`` is then that of the exact turn of the vertices given, to a few units in
+    the last place; elsewhere the cross product's rounding moves ``psi`` by at most 4.4e-16
+    radians and ``tan(psi/2)`` by at most 4e-15 of itself near ``pi``. Where the edges point in
+    exactly opposite directions the result is ``+inf`` (``psi = pi``). Where an edge length lies
+    outside :data:`SAFE`, each row is first scaled by a power of two (exactly), so that no product
+    under- or overflows and the result is the same at every scale.
     """
-    la, lb = lengths(a), lengths(b)
-    ea, eb = np.frexp(la)[1], np.frexp(lb)[1]
-    a, b, la, lb = np.ldexp(a, -ea[:, None]), np.ldexp(b, -eb[:, None]), np.ldexp(la, -ea), np.ldexp(lb, -eb)
-    dot = a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1]
-    minus_cross = a[:, 1] * b[:, 0] - a[:, 0] * b[:, 1]
+    if not (len(la) and SAFE[0] < min(la.min(), lb.min()) and max(la.max(), lb.max()) < SAFE[1]):
+        ea, eb = np.frexp(la)[1], np.frexp(lb)[1]
+        a, b, la, lb = np.ldexp(a, -ea[:, None]), np.ldexp(b, -eb[:, None]), np.ldexp(la, -ea), np.ldexp(lb, -eb)
+    dot = a[:, 0] * b[:, 0]
+    dot += a[:, 1] * b[:, 1]
+    minus_cross = a[:, 1] * b[:, 0]
+    minus_cross -= a[:, 0] * b[:, 1]
+    ll = la * lb
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        t = np.where(dot >= 0, minus_cross / (la * lb + dot), (la * lb - dot) / minus_cross)
-    t[(dot < 0) & (minus_cross == 0)] = np.inf  # exactly opposite: psi = +pi, whatever the sign of 0
+        t = np.where(dot >= 0, minus_cross / (ll + dot), (ll - dot) / minus_cross)
+    near = np.flatnonzero((dot < 0) & (8 * np.abs(minus_cross) < ll))
+    if len(near):  # within about 7 degrees of a turn straight back: the exact turn of the vertices
+        t[near] = _exact_tan_half_turn(v, near + first)
     return t
+
+
+def _exact_tan_half_turn(v, at):
+    """``tan(psi / 2)`` at the vertices ``at`` of ``v``, its cross product exact (see :func:`tan_half_turn`)."""
+    n = len(v)
+    p, q, r = v[(at - 1) % n], v[at], v[(at + 1) % n]
+    scale = -np.frexp(np.abs(np.concatenate((p, q, r), axis=1)).max(axis=1))[1][:, None]
+    p, q, r = np.ldexp(p, scale), np.ldexp(q, scale), np.ldexp(r, scale)  # exact: at most 1 in size
+    a, da = _two_difference(q, p)  # the edges: a + da = q - p and b + db = r - q exactly
+    b, db = _two_difference(r, q)
+    terms = [term for (x, dx), (y, dy), sign in (((a[:, 1], da[:, 1]), (b[:, 0], db[:, 0]), 1.0),
+                                                 ((a[:, 0], da[:, 0]), (b[:, 1], db[:, 1]), -1.0))
+             for u in (x, dx) for w in (y, dy) for term in _two_product(sign * u, w)]
+    minus_cross = exact_sum(np.stack(terms, axis=1))
+    la, lb = np.hypot(a[:, 0], a[:, 1]), np.hypot(b[:, 0], b[:, 1])
+    dot = a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1]
+    with np.errstate(divide="ignore", over="ignore"):
+        t = (la * lb - dot) / minus_cross
+    t = np.clip(t, -np.finfo(float).max, np.finfo(float).max)  # beyond the floats, but not a reversal
+    t[minus_cross == 0] = np.inf  # exactly opposite: psi = +pi, whatever the sign of 0
+    return t
+
+
+def _two_difference(x, y):
+    """``(d, e)`` with ``d + e == x - y`` exactly (Knuth's two-sum)."""
+    d = x - y
+    z = d - x
+    return d, (x - (d - z)) - (y + z)
+
+
+def exact_sum(terms):
+    """The sum of each row of ``terms``, to the float nearest (ties aside), and its exact sign.
+
+    Repeated passes of error-free additions (Ogita, Rump and Oishi's cascade) move the rounding
+    errors of each partial sum to the right until none is left; the last entry then holds the sum.
+    """
+    terms = terms.copy()
+    for _ in range(4 * terms.shape[1] + 8):  # converges well within this; each pass is exact
+        before = terms.copy()
+        for j in range(1, terms.shape[1]):
+            s = terms[:, j - 1] + terms[:, j]
+            z = s - terms[:, j - 1]
+            terms[:, j - 1] = (terms[:, j - 1] - (s - z)) + (terms[:, j] - z)
+            terms[:, j] = s
+        if np.array_equal(before, terms):
+            break
+    return terms[:, -1]
+
+
+# ---------------------------------------------------------------------- linear algebra
+
+
+def solve_cyclic_tridiagonal(a, b, c, d):
+    """Solve ``a_i x_{i-1} + b_i x_i + c_i x_{i+1} = d_i`` for ``i`` mod ``m`` (``d``: shape ``(m, 2)``).
+
+    Cyclic reduction, vectorized: each pass eliminates the odd-numbered unknowns from the equations
+    of their even-numbered neighbours, which leaves a cyclic tridiagonal system half the size
+    (when ``m`` is odd, the last and first unknowns are both even and stay coupled directly). The
+    last small system is solved densely and the odd unknowns are recovered on the way back: ``log2
+    m`` passes of numpy work, ``O(m)`` time and memory, where a dense solve costs ``O(m^3)``.
+    Without pivoting, elimination is stable for diagonally dominant systems such as ``I - dt G Lap``.
+
+    >>> m = 7; x = np.arange(2.0 * m).reshape(m, 2)
+    >>> a, b, c = np.full(m, -1.0), np.full(m, 4.0), np.full(m, -1.0)
+    >>> d = b[:, None] * x + a[:, None] * np.roll(x, 1, axis=0) + c[:, None] * np.roll(x, -1, axis=0)
+    >>> bool(np.allclose(solve_cyclic_tridiagonal(a, b, c, d), x))
+    True
+    """
+    levels = []
+    while len(b) > 4:
+        m = len(b)
+        j = np.arange(0, m, 2)  # the unknowns kept
+        left, right = (j - 1) % m, (j + 1) % m
+        alpha, gamma = -a[j] / b[left], -c[j] / b[right]  # multiples of the neighbouring equations
+        new_a, new_c = alpha * a[left], gamma * c[right]
+        if m % 2:  # unknowns m - 1 and 0 are both kept: their coupling stays as it is
+            alpha[0] = gamma[-1] = 0.0
+            new_a[0], new_c[-1] = a[0], c[-1]
+        levels.append((a, b, c, d))
+        b, d = b[j] + alpha * c[left] + gamma * a[right], d[j] + alpha[:, None] * d[left] + gamma[:, None] * d[right]
+        a, c = new_a, new_c
+    m, i = len(b), np.arange(len(b))
+    M = np.zeros((m, m))
+    for offset, coefficients in ((-1, a), (0, b), (1, c)):  # three diagonals; they overlap when m < 3
+        np.add.at(M, (i, (i + offset) % m), coefficients)
+    x = np.linalg.solve(M, d)
+    for a, b, c, d in reversed(levels):  # back-substitute the odd unknowns of each level
+        m = len(b)
+        full, odd = np.empty_like(d), np.arange(1, m, 2)
+        full[::2] = x
+        full[odd] = (d[odd] - a[odd, None] * full[odd - 1] - c[odd, None] * full[(odd + 1) % m]) / b[odd, None]
+        x = full
+    return x
 
 
 # -------------------------------------------------------------------------------- the area

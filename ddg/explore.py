@@ -27,7 +27,8 @@ import numpy as np
 
 from . import smooth
 from ._extras import missing
-from .curve import CURVATURES, INFLATIONS, DiscreteCurve, regular_polygon
+from .curve import CURVATURES, INFLATIONS, DiscreteCurve
+from .polygons import regular_polygon
 from .scene import COLORS, RAMP, Animation, Explorer, Scene, svg
 
 __all__ = ["COLORS", "RAMP", "Animation", "Explorer", "Scene", "svg", "polygon_explorer", "inflation_explorer",

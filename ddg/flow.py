@@ -22,7 +22,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import _numerics as nx
+from ._numerics import solve_cyclic_tridiagonal
 from .curve import CURVATURES, DiscreteCurve
+from .errors import DegenerateCurveError, InputError, OpenCurveError, OutOfRangeError
 
 try:  # a progress bar on long runs, when tqdm is installed (it is optional)
     from tqdm.auto import tqdm
@@ -43,7 +45,8 @@ class FlowRun:
     lengths: np.ndarray
     areas: np.ndarray
     turning_numbers: np.ndarray
-    snapshots: list = field(repr=False)  # (time, DiscreteCurve) pairs
+    snapshots: list = field(repr=False)  # (time, DiscreteCurve) pairs, relative to origin
+    origin: np.ndarray = field(default_factory=lambda: np.zeros(2))
     stopped: str = ""
     steps: int = 0
     seconds: float = 0.0
@@ -51,7 +54,7 @@ class FlowRun:
     def area_rate(self):
         """``dA/dt`` by centred differences of the recorded areas (smooth flow: ``-2 pi n``)."""
         if len(self.times) < 2:
-            raise ValueError(f"the area rate needs at least 2 records; this run has {len(self.times)} ({self.stopped})")
+            raise DegenerateCurveError(f"the area rate needs at least 2 records; this run has {len(self.times)} ({self.stopped})")
         return np.gradient(self.areas, self.times)
 
 
@@ -113,43 +116,6 @@ def remaining_lifetime(curve, kind):
     return curve.length / np.sum(A * k * curve.curvature("sine"))
 
 
-def solve_cyclic_tridiagonal(a, b, c, d):
-    """Solve ``a_i x_{i-1} + b_i x_i + c_i x_{i+1} = d_i`` for ``i`` mod ``m`` (``d``: shape ``(m, 2)``).
-
-    Cyclic reduction, vectorized: each pass eliminates the odd-numbered unknowns from the equations
-    of their even-numbered neighbours, which leaves a cyclic tridiagonal system half the size
-    (when ``m`` is odd, the last and first unknowns are both even and stay coupled directly). The
-    last small system is solved densely and the odd unknowns are recovered on the way back: ``log2
-    m`` passes of numpy work, ``O(m)`` time and memory, where a dense solve costs ``O(m^3)``.
-    Without pivoting, elimination is stable for diagonally dominant systems such as ``I - dt G Lap``.
-    """
-    levels = []
-    while len(b) > 4:
-        m = len(b)
-        j = np.arange(0, m, 2)  # the unknowns kept
-        left, right = (j - 1) % m, (j + 1) % m
-        alpha, gamma = -a[j] / b[left], -c[j] / b[right]  # multiples of the neighbouring equations
-        new_a, new_c = alpha * a[left], gamma * c[right]
-        if m % 2:  # unknowns m - 1 and 0 are both kept: their coupling stays as it is
-            alpha[0] = gamma[-1] = 0.0
-            new_a[0], new_c[-1] = a[0], c[-1]
-        levels.append((a, b, c, d))
-        b, d = b[j] + alpha * c[left] + gamma * a[right], d[j] + alpha[:, None] * d[left] + gamma[:, None] * d[right]
-        a, c = new_a, new_c
-    m, i = len(b), np.arange(len(b))
-    M = np.zeros((m, m))
-    for offset, coefficients in ((-1, a), (0, b), (1, c)):  # three diagonals; they overlap when m < 3
-        np.add.at(M, (i, (i + offset) % m), coefficients)
-    x = np.linalg.solve(M, d)
-    for a, b, c, d in reversed(levels):  # back-substitute the odd unknowns of each level
-        m = len(b)
-        full, odd = np.empty_like(d), np.arange(1, m, 2)
-        full[::2] = x
-        full[odd] = (d[odd] - a[odd, None] * full[odd - 1] - c[odd, None] * full[(odd + 1) % m]) / b[odd, None]
-        x = full
-    return x
-
-
 def semi_implicit_step(curve, kind, dt):
     """One backward Euler step with the lengths frozen: solve ``(I - dt G Lap) v_new = v``.
 
@@ -171,23 +137,23 @@ def remesh(curve):
     straight back, before or after, raises ``ValueError``.
     """
     if not isinstance(curve, DiscreteCurve):
-        raise ValueError(f"curve must be a DiscreteCurve, got {type(curve).__name__}")
-    if len(curve._reversals):
-        raise ValueError(_reversal(curve))
+        raise InputError(f"curve must be a DiscreteCurve, got {type(curve).__name__}")
+    if len(curve.reversals):
+        raise DegenerateCurveError(_reversal(curve))
     v = np.vstack([curve.vertices, curve.vertices[:1]]) if curve.closed else curve.vertices
     s = np.concatenate([[0.0], np.cumsum(curve.edge_lengths)])
     n = len(curve)
     target = curve.length * np.arange(n) / (n if curve.closed else n - 1)
     new = DiscreteCurve(np.stack([np.interp(target, s, v[:, 0]), np.interp(target, s, v[:, 1])], axis=1),
                         closed=curve.closed)
-    if len(new._reversals):
-        raise ValueError(f"remeshing gives a curve that turns straight back at vertex {new._vertex_index(new._reversals[0])}"
+    if len(new.reversals):
+        raise DegenerateCurveError(f"remeshing gives a curve that turns straight back at vertex {new.reversals[0]}"
                          " (the polyline nearly does there)")
     return new
 
 
 def _reversal(curve):
-    return (f"the curve turns straight back at vertex {curve._vertex_index(curve._reversals[0])} (psi = pi): neither "
+    return (f"the curve turns straight back at vertex {curve.reversals[0]} (psi = pi): neither "
             "its turning number nor the tangent curvature is defined there")
 
 
@@ -221,7 +187,7 @@ class Settings:
                 nx.real(getattr(self, name), name, 0.0, strict=True)
         for name in ("stop_length_fraction", "stop_edge_fraction"):
             if nx.real(getattr(self, name), name, 0.0) >= 1:
-                raise ValueError(f"{name} must be a fraction in [0, 1), got {getattr(self, name)!r}")
+                raise InputError(f"{name} must be a fraction in [0, 1), got {getattr(self, name)!r}")
         nx.count(self.snapshots, "snapshots", 0)
         nx.count(self.max_steps, "max_steps", 1)
         if self.remesh_every is not None:
@@ -248,6 +214,15 @@ class _Frame:
 
     def curve(self, local):
         return DiscreteCurve(np.ldexp(local.vertices, self.exponent) + self.origin)
+
+    def snapshots(self, kept):
+        """``(snapshots, origin)``: the kept curves where they are, or, where one cannot be placed there
+        (far from the origin a shrunken curve's vertices round onto each other), all of them
+        relative to ``origin``, the first vertex of the starting curve."""
+        try:
+            return [(self.time(t), self.curve(c)) for t, c in kept], np.zeros(2)
+        except DegenerateCurveError:
+            return [(self.time(t), DiscreteCurve(np.ldexp(c.vertices, self.exponent))) for t, c in kept], self.origin
 
     def time(self, local_time):
         with np.errstate(over="ignore"):  # inf: a time beyond the floats, which flow() refuses
@@ -280,7 +255,9 @@ def flow(curve, kind="sine", t_end=1.0, *, method="explicit", dt=None, safety=0.
         the area comes out too large by ``c * lifetime_fraction`` times the area lost, ``c = 1/4``
         (explicit) or ``3/4`` (semi-implicit): 0.5% or 1.5% at the default.
     snapshots : int, curves kept for drawing, evenly spaced over the run's expected span (the
-        shorter of ``t_end`` and the curve's estimated lifetime), and the last state.
+        shorter of ``t_end`` and the curve's estimated lifetime), and the last state. They lie
+        where the curve is, unless it is so far from the origin that a snapshot's vertices would
+        round onto each other there: then all of them are relative to ``run.origin``.
     record_every : float, time between records (default: a 400th of that span).
     stop_length_fraction, stop_edge_fraction :
         Stop cleanly, before the polygon degenerates, once its length falls below this fraction of
@@ -292,7 +269,8 @@ def flow(curve, kind="sine", t_end=1.0, *, method="explicit", dt=None, safety=0.
     progress : bool, show a progress bar when a run takes more than a second (needs ``tqdm``).
 
     The run is computed in coordinates relative to the curve (its first vertex, at its own scale),
-    so a curve far from the origin, or at any scale, flows as it would near the origin at size 1.
+    so a curve far from the origin, or at any scale, flows as it would near the origin at size 1:
+    the same run, translated and scaled, to the last bit.
 
     Returns
     -------
@@ -302,25 +280,25 @@ def flow(curve, kind="sine", t_end=1.0, *, method="explicit", dt=None, safety=0.
     settings = Settings(kind, method, t_end, dt, safety, lifetime_fraction, snapshots, record_every,
                         stop_length_fraction, stop_edge_fraction, remesh_every, max_steps, max_seconds, progress)
     if not isinstance(curve, DiscreteCurve):
-        raise ValueError(f"curve must be a DiscreteCurve, got {type(curve).__name__}")
+        raise InputError(f"curve must be a DiscreteCurve, got {type(curve).__name__}")
     if not curve.closed:
-        raise ValueError("curve-shortening flow is defined here for closed curves only; this curve is open")
-    if len(curve._reversals):
-        raise ValueError(_reversal(curve))
+        raise OpenCurveError("curve-shortening flow is defined here for closed curves only; this curve is open")
+    if len(curve.reversals):
+        raise DegenerateCurveError(_reversal(curve))
     frame = _Frame(curve)
     start = frame.local(curve)
-    if len(start._reversals):  # a turn a rounding error short of pi, rounded onto it by the move
-        raise ValueError(_reversal(start))
+    if len(start.reversals):  # a turn a rounding error short of pi, rounded onto it by the move
+        raise DegenerateCurveError(_reversal(start))
     end = frame.local_time(float(t_end))
     lifetime = remaining_lifetime(start, kind)
     degenerate = not 0 < lifetime < np.inf  # at the curve's own scale: a collapsed curve
     if not degenerate and not 0 < frame.time(lifetime) < np.inf:
         power = np.log10(lifetime) + 2 * frame.exponent * np.log10(2)
-        raise ValueError(f"the curve's lifetime under the flow, about 1e{power:.0f}, is beyond the range of floats: "
+        raise OutOfRangeError(f"the curve's lifetime under the flow, about 1e{power:.0f}, is beyond the range of floats: "
                          "scale the curve (times scale with the square of its size)")
     if dt is not None and not degenerate and min(end, lifetime) / frame.local_time(dt) > max_steps:
         needed = min(end, lifetime) / frame.local_time(dt)
-        raise ValueError(f"dt = {dt!r} would take about {needed:.1e} steps to reach t = "
+        raise OutOfRangeError(f"dt = {dt!r} would take about {needed:.1e} steps to reach t = "
                          f"{frame.time(min(end, lifetime)):.4g} (t_end or the curve's end, whichever comes first), "
                          f"more than max_steps = {max_steps}: take a larger dt, or leave it out for a stable one")
     run = _Run(settings, frame, start, end, end if degenerate else min(end, lifetime))
@@ -341,7 +319,7 @@ class _Run:
         self.length0, self.number = curve.length, curve.turning_number
         every = frame.local_time(settings.record_every) if settings.record_every else span / 400
         self.every, self.next_record, self.records, self.kept = every, 0.0, [], []
-        self.snapshot_times, self.next_snapshot = np.linspace(0, span, settings.snapshots), 0
+        self.next_snapshot = 0  # how many of the snapshot times, span * j / (snapshots - 1), have been kept
         self.dt = None if settings.dt is None else frame.local_time(settings.dt)
         self.seconds = 0.0
 
@@ -350,7 +328,8 @@ class _Run:
         if self.t >= self.next_record * (1 - 1e-12) or self.t == self.end:
             self.records.append((self.t, self.curve.length, self.curve.signed_area, self.curve.turning_number))
             self.next_record = self.t + self.every
-        due = np.searchsorted(self.snapshot_times, self.t * (1 + 1e-12), side="right")
+        wanted = self.settings.snapshots
+        due = min(wanted, 1 + int(self.t * (1 + 1e-12) / self.span * (wanted - 1))) if wanted > 1 else wanted
         if due > self.next_snapshot:
             self.kept.append((self.t, self.curve))
             self.next_snapshot = due
@@ -396,7 +375,7 @@ class _Run:
         new = DiscreteCurve(new)
         if s.remesh_every and (self.steps + 1) % s.remesh_every == 0:
             new = remesh(new)
-        if len(new._reversals):
+        if len(new.reversals):
             raise _Stop(_reversal(new))
         if new.turning_number != self.number:
             raise _Stop("the turning number changed (the step was too large)")
@@ -436,7 +415,7 @@ class _Run:
         t, lengths, areas, numbers = (np.array(column) for column in zip(*self.records, strict=True))
         return FlowRun(self.settings.kind, self.settings.method, np.ldexp(t, 2 * f.exponent),
                        np.ldexp(lengths, f.exponent), np.ldexp(areas, 2 * f.exponent), numbers.astype(int),
-                       [(f.time(t), f.curve(c)) for t, c in self.kept], self.stopped, self.steps, self.seconds)
+                       *f.snapshots(self.kept), self.stopped, self.steps, self.seconds)
 
 
 class _Stop(Exception):

@@ -7,7 +7,8 @@ with the input, from the answer key).
 
 import numpy as np
 
-from ..curve import DiscreteCurve, regular_polygon
+from ..curve import DiscreteCurve
+from ..polygons import regular_polygon
 from . import geometry as g
 from .curvatures import READ_ONLY, shifted, wrap_around
 from .judge import Call, Exercise, Mistake, given

@@ -7,7 +7,8 @@ comes with the input, from the answer key (``ddg.checks.judge.Call.want``).
 
 import numpy as np
 
-from ..curve import DiscreteCurve, regular_polygon
+from ..curve import DiscreteCurve
+from ..polygons import regular_polygon
 from . import geometry as g
 from .judge import Call, Exercise, Mistake
 

@@ -11,7 +11,8 @@ import numpy as np
 
 from .. import smooth
 from .._extras import missing
-from ..curve import DiscreteCurve, regular_polygon
+from ..curve import DiscreteCurve
+from ..polygons import regular_polygon
 
 
 def build(spec):
