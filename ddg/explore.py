@@ -1,9 +1,13 @@
 """Explorers and animations: ``ddg`` computes every state, a small SVG scene draws it.
 
 >>> from ddg.explore import polygon_explorer, inflation_explorer, vertex_explorer
->>> polygon_explorer()        # n, the curve and the formula; the error against the smooth curvature
->>> inflation_explorer()      # eps, the shape and the inflation; the formula against the measured area
->>> vertex_explorer()         # drag one vertex; psi_i, every k_i and the gradient of length respond
+>>> polygon_explorer()        # doctest: +ELLIPSIS
+<ddg.explore.PolygonExplorer object at ...>
+
+In a notebook the last line of a cell shows it: n, the curve and the formula, and the error against
+the smooth curvature. ``inflation_explorer()`` gives eps, the shape and the inflation, the formula
+against the measured area; ``vertex_explorer()`` lets one drag a vertex while psi_i, every k_i and
+the gradient of length respond.
 
 One explorer, two places:
 

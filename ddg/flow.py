@@ -12,8 +12,9 @@ for the lecture's inner product (§3.3), a heat equation for the positions. The 
 curvatures move the same way at other speeds, ``k_i = g_i k_i^sine`` with
 ``g = (psi/2) / sin(psi/2)`` or ``1 / cos(psi/2)``.
 
->>> run = ddg.flow.flow(ddg.regular_polygon(64), "sine", t_end=0.2)        # doctest: +SKIP
->>> run.times, run.lengths, run.areas, run.turning_numbers, run.snapshots  # doctest: +SKIP
+>>> run = flow(regular_polygon(64), "sine", t_end=0.2, progress=False)
+>>> run.stopped, float(run.times[-1]), len(run.snapshots)
+('reached t_end', 0.2, 30)
 """
 
 import time
@@ -23,7 +24,9 @@ import numpy as np
 
 from . import _numerics as nx
 from ._numerics import solve_cyclic_tridiagonal
-from .curve import CURVATURES, DiscreteCurve
+from .curve import Array, DiscreteCurve
+from ._frame import Frame, Settings
+from .polygons import regular_polygon  # noqa: F401 (the examples' polygons)
 from .errors import DegenerateCurveError, InputError, OpenCurveError, OutOfRangeError
 
 try:  # a progress bar on long runs, when tqdm is installed (it is optional)
@@ -31,13 +34,17 @@ try:  # a progress bar on long runs, when tqdm is installed (it is optional)
 except ImportError:
     tqdm = None
 
-METHODS = ("explicit", "semi-implicit")
 
 
 @dataclass
 class FlowRun:
     """What a run recorded: the first and the last state and the states in between, spaced by the
-    curve's life (see :func:`flow`), snapshots for drawing, why it stopped, and its cost."""
+    curve's life (see :func:`flow`), snapshots for drawing, why it stopped, and its cost.
+
+    >>> run = flow(regular_polygon(32), "angle", 0.1, snapshots=3, progress=False)
+    >>> run.kind, run.method, run.stopped, [round(t, 3) for t, curve in run.snapshots]
+    ('angle', 'explicit', 'reached t_end', [0.0, 0.05, 0.1])
+    """
 
     kind: str
     method: str
@@ -51,20 +58,33 @@ class FlowRun:
     steps: int = 0
     seconds: float = 0.0
 
-    def area_rate(self):
-        """``dA/dt`` by centred differences of the recorded areas (smooth flow: ``-2 pi n``)."""
+    def area_rate(self) -> Array:
+        """``dA/dt`` by centred differences of the recorded areas (smooth flow: ``-2 pi n``).
+
+        >>> run = flow(regular_polygon(400), "sine", 0.1, progress=False)
+        >>> round(float(run.area_rate().mean()) / np.pi, 2)                  # a circle's: -2 pi
+        -2.0
+        """
         if len(self.times) < 2:
             raise DegenerateCurveError(f"the area rate needs at least 2 records; this run has {len(self.times)} ({self.stopped})")
         return np.gradient(self.areas, self.times)
 
 
-def velocity(curve, kind):
-    """``-k_i N_i`` for every vertex: the discrete curve-shortening velocity."""
+def velocity(curve: DiscreteCurve, kind: str) -> Array:
+    """``-k_i N_i`` for every vertex: the discrete curve-shortening velocity.
+
+    >>> velocity(regular_polygon(4), "sine")[0].round(12) + 0.0     # towards the centre at speed 1 / r
+    array([-1.,  0.])
+    """
     return -curve.curvature(kind)[:, None] * curve.bisector_normals
 
 
-def speed_factor(curve, kind):
-    """``g_i = k_i / k_i^sine``: how much faster than the gradient flow of length each vertex moves."""
+def speed_factor(curve: DiscreteCurve, kind: str) -> Array:
+    """``g_i = k_i / k_i^sine``: how much faster than the gradient flow of length each vertex moves.
+
+    >>> speed_factor(regular_polygon(4), "tangent") ** 2            # 1 / cos(psi/2), psi = pi/2
+    array([2., 2., 2., 2.])
+    """
     half = curve.turning_angles / 2
     if kind == "sine":
         return np.ones(len(curve))
@@ -84,22 +104,25 @@ def _travel_step(curve, kind):
         return float(np.min(_shorter_edges(curve) / np.abs(curve.curvature(kind))))
 
 
-def stable_step(curve, kind, safety=0.25):
+def stable_step(curve: DiscreteCurve, kind: str, safety: float = 0.25) -> float:
     """An explicit time step from the shortest edges, safe for forward Euler.
 
     The sine flow is the heat equation ``dv/dt = Lap v``; the stiffest mode of ``Lap`` decays at a
     rate of at most ``max_i 4 / (h_i A_i)`` (Gershgorin), ``h_i`` the shorter edge at ``v_i``, and
     on most polygons close to that (chapter 9 gives the lower bound). Forward Euler is stable when
     ``dt`` times that rate stays below 2, so ``dt = h A / 2`` at the worst vertex is safe, divided
-    by ``g_i`` for the faster flows. A vertex must also not travel farther than a fraction of its edges in one step,
-    which matters where ``k`` is huge (near kinks).
+    by ``g_i`` for the faster flows. A vertex must also not travel farther than a fraction of its
+    edges in one step, which matters where ``k`` is huge (near kinks).
+
+    >>> round(stable_step(regular_polygon(4), "sine"), 12)     # 0.25 min(h A / 2, h / k): h = A = sqrt 2, k = 1
+    0.25
     """
     safety = nx.real(safety, "safety", 0.0, strict=True)
     diffusion = np.min(_shorter_edges(curve) * curve.dual_lengths / (2 * speed_factor(curve, kind)))
-    return safety * min(diffusion, _travel_step(curve, kind))
+    return float(safety * min(diffusion, _travel_step(curve, kind)))
 
 
-def remaining_lifetime(curve, kind):
+def remaining_lifetime(curve: DiscreteCurve, kind: str) -> float:
     """How long the curve has left under the flow, estimated from the rate of its area (or length).
 
     Along ``dv_i/dt = -k_i N_i``: ``dA/dt = -sum_i A_i k_i cos(psi_i/2)`` (chain rule; chapter 9 of
@@ -108,33 +131,45 @@ def remaining_lifetime(curve, kind):
     0, as for a figure-eight, or an area moving away from 0) it is ``L / |dL/dt|``, with
     ``dL/dt = -sum_i A_i k_i k_i^sine``: twice the lifetime of a circle, and shorter while wiggles
     smooth out.
+
+    >>> round(remaining_lifetime(regular_polygon(10_000), "sine"), 6)     # a unit circle's: r^2 / 2
+    0.5
     """
     k, A = curve.curvature(kind), curve.dual_lengths
     area, rate = curve.signed_area, -np.sum(A * k * np.cos(curve.turning_angles / 2))
     if curve.turning_number != 0 and area * rate < 0:
-        return -area / rate
-    return curve.length / np.sum(A * k * curve.curvature("sine"))
+        return float(-area / rate)
+    return float(curve.length / np.sum(A * k * curve.curvature("sine")))
 
 
-def semi_implicit_step(curve, kind, dt):
+def semi_implicit_step(curve: DiscreteCurve, kind: str, dt: float) -> Array:
     """One backward Euler step with the lengths frozen: solve ``(I - dt G Lap) v_new = v``.
 
     ``(G Lap v)_i = g_i / A_i * ((v_{i+1} - v_i) / |e_{i+1/2}| - (v_i - v_{i-1}) / |e_{i-1/2}|)`` equals
     ``-k_i N_i`` at the current vertices (``curve.laplacian``, with the speeds ``g_i``); treating it
     implicitly removes the ``h^2`` step limit. The system is cyclic tridiagonal and diagonally
-    dominant: :func:`solve_cyclic_tridiagonal`.
+    dominant: :func:`~ddg._numerics.solve_cyclic_tridiagonal`.
+
+    >>> square = regular_polygon(4)
+    >>> bool(np.abs(semi_implicit_step(square, "sine", 1e-9) - square.vertices).max() < 1e-8)
+    True
     """
     w_next, w_prev = 1 / curve.edge_lengths, 1 / nx.previous(curve.edge_lengths)
     s = dt * speed_factor(curve, kind) / curve.dual_lengths
     return solve_cyclic_tridiagonal(-s * w_prev, 1 + s * (w_next + w_prev), -s * w_next, curve.vertices)
 
 
-def remesh(curve):
+def remesh(curve: DiscreteCurve) -> DiscreteCurve:
     """Vertices spread evenly in arc length along the same polyline, as many as before.
 
     The new vertices lie on the old edges; corners between them are cut, so the length and (for a
     convex curve) the area can only shrink. An open curve keeps its two ends. A curve that turns
-    straight back, before or after, raises ``ValueError``.
+    straight back, before or after, raises :class:`~ddg.errors.DegenerateCurveError`.
+
+    >>> remesh(DiscreteCurve([[0, 0], [1, 0], [4, 0]], closed=False)).vertices
+    array([[0., 0.],
+           [2., 0.],
+           [4., 0.]])
     """
     if not isinstance(curve, DiscreteCurve):
         raise InputError(f"curve must be a DiscreteCurve, got {type(curve).__name__}")
@@ -160,81 +195,11 @@ def _reversal(curve):
 # ---------------------------------------------------------------------------------- the run
 
 
-@dataclass(frozen=True)
-class Settings:
-    """A run's settings, checked (see :func:`flow` for their meaning)."""
-
-    kind: str
-    method: str
-    t_end: float
-    dt: float | None
-    safety: float
-    lifetime_fraction: float
-    snapshots: int
-    record_every: float | None
-    stop_length_fraction: float
-    stop_edge_fraction: float
-    remesh_every: int | None
-    max_steps: int
-    max_seconds: float
-    progress: bool
-
-    def __post_init__(self):
-        nx.choose(self.kind, CURVATURES, "curvature kind")
-        nx.choose(self.method, METHODS, "method")
-        for name in ("t_end", "dt", "safety", "lifetime_fraction", "record_every", "max_seconds"):
-            if getattr(self, name) is not None or name not in ("dt", "record_every"):
-                nx.real(getattr(self, name), name, 0.0, strict=True)
-        for name in ("stop_length_fraction", "stop_edge_fraction"):
-            if nx.real(getattr(self, name), name, 0.0) >= 1:
-                raise InputError(f"{name} must be a fraction in [0, 1), got {getattr(self, name)!r}")
-        nx.count(self.snapshots, "snapshots", 0)
-        nx.count(self.max_steps, "max_steps", 1)
-        if self.remesh_every is not None:
-            nx.count(self.remesh_every, "remesh_every", 1)
-        nx.flag(self.progress, "progress")
-
-
-class _Frame:
-    """Coordinates relative to the curve: ``local = (v - origin) / scale``, time ``t / scale**2``.
-
-    The flow commutes with translations and with scaling (``v -> s v``, ``t -> s**2 t``), so it is
-    run near the origin at a size of about 1, where every move, however small against the curve's
-    position in the plane, is kept, and no area or step under- or overflows. ``scale`` is a power of
-    two, so scaling back is exact.
-    """
-
-    def __init__(self, curve):
-        self.origin = curve.vertices[0].copy()
-        self.exponent = int(np.frexp(curve.length)[1])
-        self.scale = float(np.ldexp(1.0, self.exponent))
-
-    def local(self, curve):
-        return DiscreteCurve(np.ldexp(curve.vertices - self.origin, -self.exponent))
-
-    def curve(self, local):
-        return DiscreteCurve(np.ldexp(local.vertices, self.exponent) + self.origin)
-
-    def snapshots(self, kept):
-        """``(snapshots, origin)``: the kept curves where they are, or, where one cannot be placed there
-        (far from the origin a shrunken curve's vertices round onto each other), all of them
-        relative to ``origin``, the first vertex of the starting curve."""
-        try:
-            return [(self.time(t), self.curve(c)) for t, c in kept], np.zeros(2)
-        except DegenerateCurveError:
-            return [(self.time(t), DiscreteCurve(np.ldexp(c.vertices, self.exponent))) for t, c in kept], self.origin
-
-    def time(self, local_time):
-        with np.errstate(over="ignore"):  # inf: a time beyond the floats, which flow() refuses
-            return float(np.ldexp(local_time, 2 * self.exponent))
-
-    def local_time(self, t):
-        return float(np.ldexp(t, -2 * self.exponent))
-
-
-def flow(curve, kind="sine", t_end=1.0, *, method="explicit", dt=None, safety=0.25, lifetime_fraction=0.02,
-         snapshots=30, record_every=None, stop_length_fraction=0.05, stop_edge_fraction=0.02,
-         remesh_every=None, max_steps=500_000, max_seconds=600.0, progress=True):
+def flow(curve: DiscreteCurve, kind: str = "sine", t_end: float = 1.0, *, method: str = "explicit",
+         dt: float | None = None, safety: float = 0.25, lifetime_fraction: float = 0.02, snapshots: int = 30,
+         record_every: float | None = None, stop_length_fraction: float = 0.05, stop_edge_fraction: float = 0.02,
+         remesh_every: int | None = None, max_steps: int = 500_000, max_seconds: float = 600.0,
+         progress: bool = True) -> FlowRun:
     """Run discrete curve-shortening flow from ``curve`` until ``t_end`` or until it must stop.
 
     Parameters
@@ -276,6 +241,10 @@ def flow(curve, kind="sine", t_end=1.0, *, method="explicit", dt=None, safety=0.
     -------
     FlowRun with the recorded times, lengths, areas, turning numbers (the first and the last state
     always among them), snapshots and ``stopped``: ``"reached t_end"``, or why it stopped earlier.
+
+    >>> run = flow(regular_polygon(12, center=(1e15, 1e15)), "sine", 1.0, progress=False)
+    >>> run.origin                    # so far away the snapshots are relative to the first vertex
+    array([1.e+15, 1.e+15])
     """
     settings = Settings(kind, method, t_end, dt, safety, lifetime_fraction, snapshots, record_every,
                         stop_length_fraction, stop_edge_fraction, remesh_every, max_steps, max_seconds, progress)
@@ -285,7 +254,7 @@ def flow(curve, kind="sine", t_end=1.0, *, method="explicit", dt=None, safety=0.
         raise OpenCurveError("curve-shortening flow is defined here for closed curves only; this curve is open")
     if len(curve.reversals):
         raise DegenerateCurveError(_reversal(curve))
-    frame = _Frame(curve)
+    frame = Frame(curve)
     start = frame.local(curve)
     if len(start.reversals):  # a turn a rounding error short of pi, rounded onto it by the move
         raise DegenerateCurveError(_reversal(start))
@@ -413,9 +382,10 @@ class _Run:
             self.kept.append((self.t, self.curve))
         f = self.frame
         t, lengths, areas, numbers = (np.array(column) for column in zip(*self.records, strict=True))
+        snapshots, origin = f.snapshots(self.kept)
         return FlowRun(self.settings.kind, self.settings.method, np.ldexp(t, 2 * f.exponent),
                        np.ldexp(lengths, f.exponent), np.ldexp(areas, 2 * f.exponent), numbers.astype(int),
-                       *f.snapshots(self.kept), self.stopped, self.steps, self.seconds)
+                       snapshots, origin, self.stopped, self.steps, self.seconds)
 
 
 class _Stop(Exception):

@@ -12,7 +12,7 @@ import numpy as np
 
 from . import _numerics as nx
 from .curve import INFLATIONS, DiscreteCurve
-from .errors import DegenerateCurveError, InputError, OutOfRangeError
+from .errors import DegenerateCurveError, InputError, OpenCurveError, OutOfRangeError
 
 MAX_ARC_STEP = 0.01
 """Largest angle (radians) between two samples of a Minkowski arc in :func:`inflate`."""
@@ -24,7 +24,8 @@ MAX_ARC_POINTS = 1_000_000
 def _checked(curve: DiscreteCurve, eps: float, method: str) -> float:
     """Check the arguments of an inflation; ``eps`` as a float."""
     nx.choose(method, INFLATIONS, "inflation method")
-    curve._require_closed("inflation")
+    if not curve.closed:
+        raise OpenCurveError("inflation is defined for closed curves only; this curve is open")
     eps = nx.real(eps, "eps")
     if eps < 0:
         raise InputError(f"eps must be >= 0, got {eps!r}: erosion is not supported (the lecture's formulas hold "
@@ -70,7 +71,7 @@ def inflated_area(curve: DiscreteCurve, eps: float, method: str = "minkowski") -
     else:  # sum_i tan(psi_i/2), not via k^tangent, which overflows first on a tiny near-reversal
         _no_reversal(curve)
         with np.errstate(over="ignore", invalid="ignore"):
-            corners = float(np.sum(curve._tan_half_psi))
+            corners = float(np.sum(curve.tan_half_psi))
     with np.errstate(over="ignore", invalid="ignore"):
         area = curve.signed_area + eps * curve.length + eps * eps * corners
     if not np.isfinite(area):
@@ -107,7 +108,7 @@ def inflate(curve: DiscreteCurve, eps: float, method: str = "minkowski") -> Disc
     if method == "offset":  # the moved edges meet at v + eps (N_{i-1/2} + tan(psi_i/2) T_{i-1/2})
         _no_reversal(curve)
         with np.errstate(over="ignore", invalid="ignore"):
-            corners = v + eps * (N_prev + curve._tan_half_psi[:, None] * T_prev)
+            corners = v + eps * (N_prev + curve.tan_half_psi[:, None] * T_prev)
         return _boundary(corners, np.arange(len(v)), eps)
     h = max(MAX_ARC_STEP, float(np.abs(psi).sum()) / MAX_ARC_POINTS)
     steps = np.ceil(np.abs(psi) / h).astype(int)  # chords per arc

@@ -38,11 +38,11 @@ def regular_polygon(n: int, radius: float = 1.0, clockwise: bool = True,
         raise OutOfRangeError(f"n = {n} vertices cannot be stored: the array would need {16 * int(n):.3g} bytes")
     radius = nx.real(radius, "radius", 0.0, strict=True)
     clockwise = nx.flag(clockwise, "clockwise")
-    center = nx.point(center, "center")
+    c = nx.point(center, "center")
     theta = (2 * np.pi / int(n)) * np.arange(int(n))
     vertices = np.stack([np.cos(theta), (-1.0 if clockwise else 1.0) * np.sin(theta)], axis=1)
     with np.errstate(over="ignore"):
-        vertices = radius * vertices + center
-    nx.require_finite(vertices, lambda i: f"vertex {i} of a regular polygon of radius {radius:g} about {center} is "
+        vertices = radius * vertices + c
+    nx.require_finite(vertices, lambda i: f"vertex {i} of a regular polygon of radius {radius:g} about {c} is "
                       "beyond the largest float", OutOfRangeError)
     return DiscreteCurve(vertices)

@@ -69,21 +69,58 @@
     return h - (2 * d * (ax - 2 * ay) + ((4 * d - ay) * ay + d * d)) / (2 * h);
   }
 
-  /* _numerics.tan_half_turn: tan(psi/2) for the clockwise turn from a[i] to b[i]. With
-   * |a||b| sin psi = -(a x b) and |a||b| cos psi = a . b:
-   *   tan(psi/2) = -(a x b) / (|a||b| + a . b)  where a . b >= 0,  (|a||b| - a . b) / -(a x b)  where not;
-   * +inf where the edges point exactly opposite (psi = pi). Each row is first scaled by a power of two
-   * to a length in [1/2, 1): exact, so the result is the same at every scale. */
-  function tan_half_turn(a, b) {
-    var la = lengths(a), lb = lengths(b);
+  /* _numerics.tan_half_turn: tan(psi/2) for the clockwise turn from a[i] to b[i], the edges into and out
+   * of vertex v[first + i]. With |a||b| sin psi = -(a x b) and |a||b| cos psi = a . b:
+   *   tan(psi/2) = -(a x b) / (|a||b| + a . b)  where a . b >= 0,  (|a||b| - a . b) / -(a x b)  where not.
+   * Where an edge length lies outside SAFE each row is first scaled by a power of two (exact). Within
+   * about 7 degrees of pi (a . b < 0 and 8 |a x b| < |a||b|) the cross product is recomputed exactly
+   * from the vertices (exact_tan_half_turn); +inf where the edges point exactly opposite (psi = pi). */
+  function tan_half_turn(a, b, la, lb, v, first) {
+    var lo = Math.min(Math.min.apply(null, la), Math.min.apply(null, lb));
+    var hi = Math.max(Math.max.apply(null, la), Math.max.apply(null, lb));
+    var safe = SAFE[0] < lo && hi < SAFE[1];
     return a.map(function (p, i) {
-      var ea = exponent(la[i]), eb = exponent(lb[i]);
+      var ea = safe ? 0 : exponent(la[i]), eb = safe ? 0 : exponent(lb[i]);
       var ax = ldexp(p[0], -ea), ay = ldexp(p[1], -ea), bx = ldexp(b[i][0], -eb), by = ldexp(b[i][1], -eb);
-      var A = ldexp(la[i], -ea), B = ldexp(lb[i], -eb);
+      var ll = ldexp(la[i], -ea) * ldexp(lb[i], -eb);
       var d = ax * bx + ay * by, minus_cross = ay * bx - ax * by;
-      if (d < 0 && minus_cross === 0) return Infinity;
-      return d >= 0 ? minus_cross / (A * B + d) : (A * B - d) / minus_cross;
+      if (d < 0 && 8 * Math.abs(minus_cross) < ll) return exact_tan_half_turn(v, first + i);
+      return d >= 0 ? minus_cross / (ll + d) : (ll - d) / minus_cross;
     });
+  }
+  /* _numerics._exact_tan_half_turn: the three vertices scaled by a power of two to at most 1 (exact),
+   * each edge kept with its rounding error (two-difference), the cross product's 16 exact terms
+   * (Dekker) added without error (exact_sum); then (|a||b| - a . b) / -(a x b). */
+  function exact_tan_half_turn(v, at) {
+    var n = v.length, p = v[(at - 1 + n) % n], q = v[at], r = v[(at + 1) % n];
+    var big = Math.max(Math.abs(p[0]), Math.abs(p[1]), Math.abs(q[0]), Math.abs(q[1]), Math.abs(r[0]), Math.abs(r[1]));
+    var s = -exponent(big);
+    p = [ldexp(p[0], s), ldexp(p[1], s)]; q = [ldexp(q[0], s), ldexp(q[1], s)]; r = [ldexp(r[0], s), ldexp(r[1], s)];
+    var ax = two_difference(q[0], p[0]), ay = two_difference(q[1], p[1]);
+    var bx = two_difference(r[0], q[0]), by = two_difference(r[1], q[1]);
+    var terms = [];
+    [[ay, bx, 1], [ax, by, -1]].forEach(function (g) {
+      g[0].forEach(function (u) { g[1].forEach(function (w) { terms.push.apply(terms, two_product(g[2] * u, w)); }); });
+    });
+    var minus_cross = exact_sum(terms);
+    var la = hypot(ax[0], ay[0]), lb = hypot(bx[0], by[0]), d = ax[0] * bx[0] + ay[0] * by[0];
+    if (minus_cross === 0) return Infinity;  // exactly opposite: psi = +pi
+    var t = (la * lb - d) / minus_cross, max = Number.MAX_VALUE;
+    return Math.min(Math.max(t, -max), max);  // beyond the floats, but not a reversal
+  }
+  function two_difference(x, y) { var d = x - y, z = d - x; return [d, (x - (d - z)) - (y + z)]; }  // d + e == x - y
+  function exact_sum(terms) {  // _numerics.exact_sum: error-free cascades until nothing changes; the last holds the sum
+    terms = terms.slice();
+    for (var pass = 0; pass < 4 * terms.length + 8; pass++) {
+      var changed = false;
+      for (var j = 1; j < terms.length; j++) {
+        var x = terms[j - 1], y = terms[j], s = x + y, z = s - x, e = (x - (s - z)) + (y - z);
+        if (e !== x || s !== y) changed = true;
+        terms[j - 1] = e; terms[j] = s;
+      }
+      if (!changed) break;
+    }
+    return terms[terms.length - 1];
   }
 
   /* _numerics.signed_area_ccw: 1/2 sum_i v_i x v_{i+1}, counter-clockwise positive, as edges times
@@ -151,14 +188,16 @@
     this.vertices = v = v.map(function (p) { return [+p[0], +p[1]]; });
     this.edges = v.map(function (p, i) { var q = v[(i + 1) % n]; return [q[0] - p[0], q[1] - p[1]]; });  // e_{i+1/2} = v_{i+1} - v_i
     var l = this.edge_lengths = lengths(this.edges);                             // |e_{i+1/2}|
-    if (!l.every(isFinite)) fail("the coordinates are too large: an edge's length overflows");
+    var far = l.findIndex(function (x) { return !isFinite(x); });
+    if (far >= 0) fail("the edge from vertex " + far + " to vertex " + (far + 1) % n + " is longer than the largest float (about 1.8e308): scale the curve down");
     var i = l.indexOf(0);
     if (i === n - 1) fail("the last vertex " + i + " repeats the first vertex 0 (" + v[0] + "); a closed curve's closing edge is implied, so leave the repeated vertex out");
     if (i >= 0) fail("vertices " + i + " and " + (i + 1) + " are equal (" + v[i] + "); consecutive vertices must differ");
     this.length = sum(l);                                                        // L = sum_i |e_{i+1/2}| (§3)
+    if (!isFinite(this.length)) fail("the curve's length is beyond the largest float (about 1.8e308): scale it down");
     this.tangents = this.edges.map(function (e, i) { return [e[0] / l[i], e[1] / l[i]]; });  // T = e / |e|
     this.normals = J(this.tangents);                                             // N_{i+1/2} = J T_{i+1/2}
-    this.tan_half_psi = tan_half_turn(previous(this.edges), this.edges);         // tan(psi_i / 2)
+    this.tan_half_psi = tan_half_turn(previous(this.edges), this.edges, previous(l), l, v, 0);  // tan(psi_i / 2)
     this.reversals = [];
     this.tan_half_psi.forEach(function (t, i) { if (t === Infinity) this.reversals.push(i); }, this);
     this.turning_angles = this.tan_half_psi.map(function (t) { return Math.max(2 * Math.atan(t), ABOVE_MINUS_PI); });  // psi_i (§3.1)
@@ -188,20 +227,29 @@
     choose(kind === undefined ? "angle" : kind, CURVATURES, "curvature kind");
     kind = kind || "angle";
     var psi = this.turning_angles, t = this.tan_half_psi, k = this.dual_lengths.map(function (A, i) {
-      var two_A = 2 * A;
-      if (kind === "angle") return 2 * psi[i] / two_A;                   // eq. (1)
-      if (kind === "sine") return 4 * Math.sin(psi[i] / 2) / two_A;      // eq. (3)
-      return 4 * t[i] / two_A;                                           // eq. (4): tan(psi/2), accurate near pi
+      if (kind === "angle") return psi[i] / A;                           // eq. (1): 2 psi / (2 A)
+      if (kind === "sine") return 2 * Math.sin(psi[i] * 0.5) / A;        // eq. (3): 4 sin(psi/2) / (2 A)
+      return t[i] * 2 / A;                                               // eq. (4): 4 tan(psi/2) / (2 A)
     });
     if (kind === "tangent" && this.reversals.length) fail("the tangent curvature (eq. 4) diverges at vertex " + this.reversals[0] + ": the curve turns straight back there (psi = pi)");
     var j = k.findIndex(function (x) { return !isFinite(x); });
     if (j >= 0) fail("the " + kind + " curvature at vertex " + j + " is beyond the largest float (a turn of " + (psi[j] * 180 / Math.PI).toPrecision(6) + " degrees between edges " + this.dual_lengths[j].toPrecision(3) + " long on average)");
     return k;
   };
-  C.total_curvature = function (kind) { return dot(this.dual_lengths, this.curvature(kind)); };  // <k, 1> = sum_i A_i k_i
+  C.total_curvature = function (kind) {  // <k, 1> = sum_i A_i k_i, summed from the angles
+    kind = kind || "angle";
+    this.curvature(kind);  // its refusals
+    if (kind === "angle") return sum(this.turning_angles);
+    var total = 2 * sum(kind === "sine" ? this.turning_angles.map(function (p) { return Math.sin(p / 2); }) : this.tan_half_psi);
+    if (!isFinite(total)) fail("the total " + kind + " curvature is beyond the largest float (about 1.8e308)");
+    return total;
+  };
   C.length_gradient = function () {  // (grad L)_j = (T_{j-1/2} - T_{j+1/2}) / A_j (§3.3, eq. 2)
     var T = this.tangents, Tp = previous(T), A = this.dual_lengths;
-    return T.map(function (t, i) { return [(Tp[i][0] - t[0]) / A[i], (Tp[i][1] - t[1]) / A[i]]; });
+    var g = T.map(function (t, i) { return [(Tp[i][0] - t[0]) / A[i], (Tp[i][1] - t[1]) / A[i]]; });
+    var j = g.findIndex(function (x) { return !isFinite(x[0]) || !isFinite(x[1]); });
+    if (j >= 0) fail("the gradient of length at vertex " + j + " is beyond the largest float (its edges are " + A[j].toPrecision(3) + " long on average)");
+    return g;
   };
   C.inflated_area = function (eps, method) {  // the area inflated by eps >= 0 along the normals (§3.4)
     method = choose(method === undefined ? "minkowski" : method, INFLATIONS, "inflation method");

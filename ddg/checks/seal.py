@@ -33,7 +33,7 @@ def switch_off(forbidden, measures):
     """
     from ..curve import DiscreteCurve
 
-    private = {"turning_angles": ("_tan_half_psi",), "curvature": ("_curvatures",)}
+    private = {"turning_angles": ("tan_half_psi",), "curvature": ("_curvatures",)}
     for name in forbidden:
         def refuse(*args, _name=name, **kwargs):
             raise WriteItYourself(f"it uses ddg's `{_name}`, which this exercise asks you to write yourself")

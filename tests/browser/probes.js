@@ -206,7 +206,9 @@ async waitingSource => {  // WAITING below, as text
     if (!c) return out;
     for (const name of ["edges", "edge_lengths", "length", "tangents", "normals", "turning_angles", "dual_lengths",
                         "turning_number", "signed_area", "bisector_normals"]) get(name, () => c[name]);
-    get("tan_half_turn", () => lab.tan_half_turn(c.edges.slice(-1).concat(c.edges.slice(0, -1)), c.edges));
+    get("tan_half_turn", () => lab.tan_half_turn(c.edges.slice(-1).concat(c.edges.slice(0, -1)), c.edges,
+                                                 c.edge_lengths.slice(-1).concat(c.edge_lengths.slice(0, -1)),
+                                                 c.edge_lengths, c.vertices, 0));
     get("length_gradient", () => c.length_gradient());
     for (const kind of lab.CURVATURES) get("curvature " + kind, () => c.curvature(kind));
     for (const method of lab.INFLATIONS) [0, eps].forEach((e, i) => get(`inflated_area ${method} ${i}`, () => c.inflated_area(e, method)));

@@ -166,7 +166,7 @@ def reference(vertices, eps):
     for name in ("edges", "edge_lengths", "length", "tangents", "normals", "turning_angles", "dual_lengths",
                  "turning_number", "signed_area", "bisector_normals"):
         out[name] = attempt(lambda name=name: getattr(curve, name))
-    out["tan_half_turn"] = curve._tan_half_psi
+    out["tan_half_turn"] = curve.tan_half_psi
     out["length_gradient"] = curve.length_gradient()
     for kind in ddg.CURVATURES:
         out[f"curvature {kind}"] = attempt(lambda kind=kind: curve.curvature(kind))

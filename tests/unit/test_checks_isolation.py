@@ -50,7 +50,7 @@ def test_an_answer_that_never_returns_gets_a_verdict_within_the_time_limit():
 
 def test_the_quantity_the_exercise_asks_for_is_switched_off_and_named_by_its_public_name():
     for name, answer in (("turning_angles", lambda v: ddg.DiscreteCurve(v).turning_angles),
-                         ("turning_angles", lambda v: 2 * np.arctan(ddg.DiscreteCurve(v)._tan_half_psi)),
+                         ("turning_angles", lambda v: 2 * np.arctan(ddg.DiscreteCurve(v).tan_half_psi)),
                          ("turning_angles", lambda v: ddg.DiscreteCurve(v).curvature("angle")
                           * ddg.DiscreteCurve(v).dual_lengths),
                          ("length_gradient", lambda v: ddg.DiscreteCurve(v).length_gradient()),

@@ -644,7 +644,7 @@ def test_hostile_polygons_inflate_to_their_formula(polygon, relative_eps, method
         return
     # how far the boundary reaches from the curve, and how large its coordinates get
     with np.errstate(over="ignore"):
-        reach = eps * (1 + (np.abs(c._tan_half_psi).max() if method == "offset" else 0))
+        reach = eps * (1 + (np.abs(c.tan_half_psi).max() if method == "offset" else 0))
         size = np.ldexp(np.ptp(v, axis=0).max(), k) + reach
         magnitude = np.abs(c.vertices).max() + reach
     try:
@@ -652,7 +652,7 @@ def test_hostile_polygons_inflate_to_their_formula(polygon, relative_eps, method
         area, formula = boundary.signed_area, c.inflated_area(eps, method)
     except ValueError as problem:
         if "collapses" in str(problem):  # offset corners far out along nearly opposite edges coincide
-            assert method == "offset" and np.abs(c._tan_half_psi).max() > 1 / (16 * EPS), problem
+            assert method == "offset" and np.abs(c.tan_half_psi).max() > 1 / (16 * EPS), problem
             return
         # otherwise only an area (or a corner) beyond the largest float may fail
         assert "largest float" in str(problem) or "overflows" in str(problem)
@@ -685,7 +685,7 @@ def test_hostile_polygons_flow_or_stop_with_a_reason(polygon, kind, method):
     except ValueError as problem:  # a life too short (or long) for floats is refused
         reversal = re.search(r"turns straight back at vertex (\d+)", str(problem))
         if reversal:  # or a turn within rounding of pi, which the flow's own frame rounds onto pi
-            assert abs(c._tan_half_psi[int(reversal[1])]) > 1 / (64 * EPS), problem
+            assert abs(c.tan_half_psi[int(reversal[1])]) > 1 / (64 * EPS), problem
             return
         assert "beyond the range of floats" in str(problem), problem
         return
