@@ -12,6 +12,16 @@ from .curvatures import READ_ONLY, shifted, wrap_around
 from .judge import Call, Exercise, Mistake, given
 
 
+def _centre(side, radius, direction="normal"):
+    """A prediction: gamma(t) - side(kappa, call) radius(kappa) N (or T, ``direction="tangent"``)."""
+    def predict(want, call):
+        curve, t = (g.build(a) for a in call.args)
+        kappa = curve.curvature(t)
+        axis = curve.normal(t) if direction == "normal" else curve.tangent(t)
+        return curve.position(t) - (side(kappa, call) * radius(kappa))[:, None] * axis
+    return predict
+
+
 class OsculatingCenter(Exercise):
     name = "osculating_center"
     unit = "point"
@@ -30,33 +40,24 @@ class OsculatingCenter(Exercise):
         calls.append(Call((bean, g.array(t)), "a non-convex curve, which bends both ways"))
         return calls
 
-    @staticmethod
-    def _centre(side, radius, direction="normal"):
-        def predict(want, call):
-            curve, t = (g.build(a) for a in call.args)
-            kappa = curve.curvature(t)
-            axis = curve.normal(t) if direction == "normal" else curve.tangent(t)
-            return curve.position(t) - (side(kappa, call) * radius(kappa))[:, None] * axis
-        return predict
-
     mistakes = (
         Mistake("outward", "on the wrong side: the centre lies where the curve bends to, and N = J T points the other "
                 "way on a clockwise circle, so it is gamma - N / kappa (on {what}{at} expected {want}, got {got})",
-                predict=_centre.__func__(lambda k, call: -1.0, lambda k: 1 / k)),
+                predict=_centre(lambda k, call: -1.0, lambda k: 1 / k)),
         Mistake("unsigned", "right where kappa > 0, but on the wrong side where the curve bends the other way: divide "
                 "by the signed kappa, not |kappa| (on {what}{at} expected {want}, got {got})",
-                predict=_centre.__func__(lambda k, call: 1.0, lambda k: 1 / np.abs(k))),
+                predict=_centre(lambda k, call: 1.0, lambda k: 1 / np.abs(k))),
         Mistake("side of the curve", "the side is decided once for the whole curve; it belongs to each point, by the "
-                "sign of kappa there (on {what}{at} expected {want}, got {got})", predict=_centre.__func__(
+                "sign of kappa there (on {what}{at} expected {want}, got {got})", predict=_centre(
                     lambda k, call: 1.0 if list(call.args[0].values())[0][-1] else -1.0, lambda k: 1 / np.abs(k))),
         Mistake("side of the first point", "the side is decided at the first point and used at all; it belongs to each "
                 "point, by the sign of kappa there (on {what}{at} expected {want}, got {got})",
-                predict=_centre.__func__(lambda k, call: np.sign(k[0]), lambda k: 1 / np.abs(k))),
+                predict=_centre(lambda k, call: np.sign(k[0]), lambda k: 1 / np.abs(k))),
         Mistake("no reciprocal", "the distance to the centre is the radius of curvature 1/|kappa|, not |kappa| (on "
-                "{what}{at} expected {want}, got {got})", predict=_centre.__func__(lambda k, call: 1.0, lambda k: k)),
+                "{what}{at} expected {want}, got {got})", predict=_centre(lambda k, call: 1.0, lambda k: k)),
         Mistake("along the tangent", "the centre lies on the normal line through the point, not along the tangent "
                 "(on {what}{at} expected {want}, got {got})",
-                predict=_centre.__func__(lambda k, call: 1.0, lambda k: 1 / k, "tangent")),
+                predict=_centre(lambda k, call: 1.0, lambda k: 1 / k, "tangent")),
         Mistake("vector", "the centre is a point, gamma(t) - N / kappa, not the vector from the curve to it (on "
                 "{what}{at} expected {want}, got {got})",
                 predict=lambda want, call: want - g.build(call.args[0]).position(g.build(call.args[1]))),
