@@ -37,9 +37,27 @@ import pathlib
 
 import numpy as np
 
-from . import comparing, curvatures, curves, geometry  # noqa: F401 (importing them registers their exercises)
-from .judge import EXERCISES, Call, CheckError, Feedback, judge
+from . import comparing, curvatures, curves, geometry
+from .judge import Call, CheckError, Feedback, judge
 from .runner import TIME_LIMIT, WriteItYourself, evaluate
+
+EXERCISE_CLASSES = (
+    curves.OsculatingCenter,  # 01_smooth_curves
+    curves.Staircase,  # 02_discrete_curves
+    curves.VertexNormals,
+    curvatures.TurningAngles,  # 03_winding_number
+    curvatures.Rebuild,
+    curvatures.LengthGradient,  # 04_gradient_of_length
+    curvatures.MinkowskiArea,  # 05_inflation
+    comparing.CircleCurvature,  # 06_table
+    comparing.ZigzagExponent,  # 07_convergence
+)
+"""Every coding exercise of the book, in the order its chapters ask for them. This list is the only
+place an exercise is named: defining its class is not enough (CONTRIBUTING.md, 'Adding an exercise
+with a check'). :data:`EXERCISES`, :data:`CHECKS` and the ``check_*`` functions are made from it."""
+
+EXERCISES = {exercise.name: exercise() for exercise in EXERCISE_CLASSES}
+"""Every coding exercise, by the name of the function it asks for, in the book's order."""
 
 CHECKS = {f"check_{name}": name for name in EXERCISES}
 """The check functions of the book, by name, with the exercise each one checks."""
@@ -168,5 +186,5 @@ def check_zigzag_exponent(zigzag_exponent, seed=None):
     return run("zigzag_exponent", zigzag_exponent, seed)
 
 
-__all__ = ["Feedback", "WriteItYourself", "TIME_LIMIT", "EXERCISES", "CHECKS", "run", "draw", "public", "answer_results",
-           *CHECKS]
+__all__ = ["Feedback", "WriteItYourself", "TIME_LIMIT", "EXERCISE_CLASSES", "EXERCISES", "CHECKS", "run", "draw",
+           "public", "answer_results", *CHECKS]
