@@ -19,6 +19,8 @@ def _of_curve(formula):
 
 
 class CircleCurvature(Exercise):
+    """``circle_curvature(curve)``: signed ``1/R`` of the circle through ``v_{i-1}, v_i, v_{i+1}``, at every vertex."""
+
     name = "circle_curvature"
     expects = "a curvature at every vertex of the closed curve, v_0 and v_(n-1) included"
 
@@ -81,6 +83,8 @@ def _with_or_without_floor(formula):
 
 
 class ZigzagExponent(Exercise):
+    """``zigzag_exponent(b)``: the exponent ``p`` in ``max_i |k_i - 1| ~ C n^p`` for zigzags of amplitude ``n^-b``, ``b > 1``."""
+
     name = "zigzag_exponent"
     unit = "b"
     expects = "the exponent p, a single number"

@@ -46,6 +46,8 @@ def ends_wrong(got, want, call):
 
 
 class TurningAngles(Exercise):
+    """``turning_angles(vertices)``: clockwise turning angle at every vertex of a closed polygon, in ``(-pi, pi]``."""
+
     name = "turning_angles"
     expects = "the closed curve turns at every vertex, v_0 and v_(n-1) included"
     forbidden = ("turning_angles", "curvature", "total_curvature", "turning_number", "bisector_normals")
@@ -119,6 +121,12 @@ def _turned(angle):
 
 
 class Rebuild(Exercise):
+    """``rebuild(psi, lengths, start, heading)``: vertices ``v_0 ... v_n`` from turning angles and edge lengths.
+
+    ``psi[i]`` is the clockwise turn at ``v_i``, ``lengths[i] = |e_{i+1/2}|``, ``start = v_0`` and
+    ``heading`` is the angle (counter-clockwise from the x-axis) of the first edge ``e_{1/2}``.
+    """
+
     name = "rebuild"
     expects = "the points v_0 ... v_n, each (x, y): n + 1 rows of 2"
 
@@ -165,6 +173,8 @@ def _times(factor):
 
 
 class LengthGradient(Exercise):
+    """``length_gradient(vertices)``: the gradient of length of a closed polygon under the lecture's ``<.,.>``."""
+
     name = "length_gradient"
     expects = "a gradient vector (x, y) at every vertex of the closed curve, v_0 and v_(n-1) included"
     forbidden = ("length_gradient", "curvature", "laplacian")
@@ -213,6 +223,12 @@ def _corners(convex, reflex):
 
 
 class MinkowskiArea(Exercise):
+    """``minkowski_area(curve, eps)``: area of the Minkowski sum of a clockwise simple polygon with a disk.
+
+    It must be right for non-convex polygons too, for ``eps`` within the conditions of the book's
+    theorem on the Minkowski sum of a simple polygon. It is measured against shapely's round buffer.
+    """
+
     name = "minkowski_area"
     expects = "the area of the Minkowski sum, a single number"
     forbidden = ("inflated_area", "inflate")

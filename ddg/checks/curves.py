@@ -23,6 +23,8 @@ def _centre(side, radius, direction="normal"):
 
 
 class OsculatingCenter(Exercise):
+    """``osculating_center(curve, t)``: centre of the osculating circle of a ``ddg.smooth`` curve at ``t``."""
+
     name = "osculating_center"
     unit = "point"
     expects = "one centre (x, y) for each parameter in t"
@@ -65,6 +67,12 @@ class OsculatingCenter(Exercise):
 
 
 class Staircase(Exercise):
+    """``staircase(curve, m)``: the ``8m`` vertices of a closed staircase around a ``ddg.smooth`` ellipse.
+
+    ``v[2k]`` is the point ``curve.position(2 pi k / (4m))`` and ``v[2k + 1]`` the corner after it;
+    steps are horizontal or vertical and corners lie outside the ellipse.
+    """
+
     name = "staircase"
     expects = "8m vertices (x, y): a point on the ellipse, then a corner, 4m times"
 
@@ -101,6 +109,13 @@ METHODS = ("bisector", "length-weighted", "length-gradient", "area-gradient")
 
 
 class VertexNormals(Exercise):
+    """``vertex_normals(curve, method)``: unit normals at the vertices of a closed curve.
+
+    ``method`` is ``"bisector"`` (the unit bisector of the two edge normals), ``"length-weighted"``
+    (the edge normals averaged with weights ``|e|``), ``"length-gradient"`` (the direction of the
+    gradient of length) or ``"area-gradient"`` (the direction of the gradient of the signed area).
+    """
+
     name = "vertex_normals"
     expects = "a unit normal (x, y) at every vertex of the closed curve, v_0 and v_(n-1) included"
     forbidden = ("bisector_normals", "length_gradient", "curvature")

@@ -104,8 +104,10 @@ def short(values, digits=4):
 class Exercise:
     """One coding exercise. Subclasses set :attr:`name`, :attr:`mistakes` and define the methods.
 
-    Defining a subclass registers nothing: ``EXERCISE_CLASSES`` in ``ddg/checks/__init__.py`` lists
-    the exercises of the book.
+    A subclass's docstring says what the exercise asks for, starting with the call, as in
+    ``turning_angles(vertices)``: that text is where the docstring of its ``check_*`` function
+    comes from. Defining a subclass registers nothing: ``EXERCISE_CLASSES`` in
+    ``ddg/checks/__init__.py`` lists the exercises of the book.
     """
 
     name = ""
