@@ -30,7 +30,6 @@ import re
 import shutil
 import sys
 
-from ddg._extras import missing
 from tools import config as yaml_config
 from tools.repo import pages_address
 
@@ -119,8 +118,10 @@ def _closes(cell):
 def _nbformat():
     try:
         import nbformat
-    except ImportError as error:
-        raise missing("edition", error) from error
+    except ImportError as error:  # not a part of ddg, so no extra of its distribution: the book's environment
+        raise ImportError(f"{error.name or 'nbformat'} is not installed; the student edition is made in the book's "
+                          "environment: `make student`, or .venv/bin/python (make sets it up from requirements.txt)",
+                          name=error.name) from error
     return nbformat
 
 

@@ -32,14 +32,36 @@ applies.
 """
 
 import functools
+import inspect
 import json
+import keyword
+import linecache
 import pathlib
+import re
 
 import numpy as np
 
-from . import comparing, curvatures, curves, geometry  # noqa: F401 (importing them registers their exercises)
-from .judge import EXERCISES, Call, CheckError, Feedback, judge
+from . import comparing, curvatures, curves, geometry
+from .judge import Call, CheckError, Feedback, judge
 from .runner import TIME_LIMIT, WriteItYourself, evaluate
+
+EXERCISE_CLASSES = (
+    curves.OsculatingCenter,  # 01_smooth_curves
+    curves.Staircase,  # 02_discrete_curves
+    curves.VertexNormals,
+    curvatures.TurningAngles,  # 03_winding_number
+    curvatures.Rebuild,
+    curvatures.LengthGradient,  # 04_gradient_of_length
+    curvatures.MinkowskiArea,  # 05_inflation
+    comparing.CircleCurvature,  # 06_table
+    comparing.ZigzagExponent,  # 07_convergence
+)
+"""Every coding exercise of the book, in the order its chapters ask for them. This list is the only
+place an exercise is named: defining its class is not enough (CONTRIBUTING.md, 'Adding an exercise
+with a check'). :data:`EXERCISES`, :data:`CHECKS` and the ``check_*`` functions are made from it."""
+
+EXERCISES = {exercise.name: exercise() for exercise in EXERCISE_CLASSES}
+"""Every coding exercise, by the name of the function it asks for, in the book's order."""
 
 CHECKS = {f"check_{name}": name for name in EXERCISES}
 """The check functions of the book, by name, with the exercise each one checks."""
@@ -106,67 +128,58 @@ def answer_results(name, answer, specs, limit=TIME_LIMIT):
     return evaluate(answer, specs, exercise.forbidden, exercise.measures, limit, geometry.build)
 
 
-def check_osculating_center(osculating_center, seed=None):
-    """``osculating_center(curve, t)``: centre of the osculating circle of a ``ddg.smooth`` curve at ``t``."""
-    return run("osculating_center", osculating_center, seed)
+# ------------------------------------------------------------------ the check functions, one per exercise
 
 
-def check_staircase(staircase, seed=None):
-    """``staircase(curve, m)``: the ``8m`` vertices of a closed staircase around a ``ddg.smooth`` ellipse.
+def _docstring(exercise):
+    """The docstring of the check of ``exercise``: what the exercise asks for (its class's docstring,
+    which starts with the call, ``name(args)``), what the check does, and an example that runs."""
+    name = exercise.name
+    description = inspect.cleandoc(type(exercise).__doc__ or f"``{name}``")
+    call = re.match(rf"``{name}\((.*?)\)``", description)
+    return f"""{description}
 
-    ``v[2k]`` is the point ``curve.position(2 pi k / (4m))`` and ``v[2k + 1]`` the corner after it;
-    steps are horizontal or vertical and corners lie outside the ellipse.
+Runs your ``{name}`` on one set of public input (``seed`` picks it; a random one when ``None``)
+and says whether it is right: the :class:`Feedback` shows ✓, or ✗ with what is wrong and where.
+``bool(feedback)`` is ``True`` when the answer is right.
+
+Examples
+--------
+An answer not written yet is still to do:
+
+>>> from ddg.checks import check_{name}
+>>> def {name}({call.group(1) if call else "*args"}):
+...     raise NotImplementedError
+>>> check_{name}({name})
+☐ {name}: to do, not written yet: replace `raise NotImplementedError` with your code, then run this cell again
+
+Once it is written, the same call says ``✓ {name} passed on N public inputs``, or ``✗ {name}:`` and
+what is wrong.
+"""
+
+
+def _check_function(exercise):
+    """``check_<name>(<name>, seed=None)`` for ``exercise``, the function one would write by hand here.
+
+    It is compiled from its two lines of source (as :mod:`dataclasses` makes ``__init__``), so that
+    its first parameter is really named after the answer: Python itself binds
+    ``check_turning_angles(turning_angles=f)`` and words the error of a wrong call. The source is
+    kept in :mod:`linecache`, for ``inspect.getsource`` (``check_turning_angles??`` in Jupyter).
     """
-    return run("staircase", staircase, seed)
+    name = exercise.name
+    if not name.isidentifier() or keyword.iskeyword(name) or name in ("run", "seed"):
+        raise ValueError(f"an exercise's name must be a Python name other than run and seed, not {name!r}")
+    source = f'def check_{name}({name}, seed=None):\n    return run("{name}", {name}, seed)\n'
+    filename = f"<ddg.checks: check_{name}>"
+    made = {}
+    exec(compile(source, filename, "exec"), globals(), made)  # the function's globals are this module's
+    linecache.cache[filename] = (len(source), None, source.splitlines(keepends=True), filename)
+    check = made[f"check_{name}"]
+    check.__doc__ = _docstring(exercise)
+    return check
 
 
-def check_vertex_normals(vertex_normals, seed=None):
-    """``vertex_normals(curve, method)``: unit normals at the vertices of a closed curve.
+globals().update({check: _check_function(EXERCISES[name]) for check, name in CHECKS.items()})
 
-    ``method`` is ``"bisector"`` (the unit bisector of the two edge normals), ``"length-weighted"``
-    (the edge normals averaged with weights ``|e|``), ``"length-gradient"`` (the direction of the
-    gradient of length) or ``"area-gradient"`` (the direction of the gradient of the signed area).
-    """
-    return run("vertex_normals", vertex_normals, seed)
-
-
-def check_turning_angles(turning_angles, seed=None):
-    """``turning_angles(vertices)``: clockwise turning angle at every vertex of a closed polygon, in ``(-pi, pi]``."""
-    return run("turning_angles", turning_angles, seed)
-
-
-def check_rebuild(rebuild, seed=None):
-    """``rebuild(psi, lengths, start, heading)``: vertices ``v_0 ... v_n`` from turning angles and edge lengths.
-
-    ``psi[i]`` is the clockwise turn at ``v_i``, ``lengths[i] = |e_{i+1/2}|``, ``start = v_0`` and
-    ``heading`` is the angle (counter-clockwise from the x-axis) of the first edge ``e_{1/2}``.
-    """
-    return run("rebuild", rebuild, seed)
-
-
-def check_length_gradient(length_gradient, seed=None):
-    """``length_gradient(vertices)``: the gradient of length of a closed polygon under the lecture's ``<.,.>``."""
-    return run("length_gradient", length_gradient, seed)
-
-
-def check_minkowski_area(minkowski_area, seed=None):
-    """``minkowski_area(curve, eps)``: area of the Minkowski sum of a clockwise simple polygon with a disk.
-
-    It must be right for non-convex polygons too, for ``eps`` within the conditions of the book's
-    theorem on the Minkowski sum of a simple polygon. It is measured against shapely's round buffer.
-    """
-    return run("minkowski_area", minkowski_area, seed)
-
-
-def check_circle_curvature(circle_curvature, seed=None):
-    """``circle_curvature(curve)``: signed ``1/R`` of the circle through ``v_{i-1}, v_i, v_{i+1}``, at every vertex."""
-    return run("circle_curvature", circle_curvature, seed)
-
-
-def check_zigzag_exponent(zigzag_exponent, seed=None):
-    """``zigzag_exponent(b)``: the exponent ``p`` in ``max_i |k_i - 1| ~ C n^p`` for zigzags of amplitude ``n^-b``, ``b > 1``."""
-    return run("zigzag_exponent", zigzag_exponent, seed)
-
-
-__all__ = ["Feedback", "WriteItYourself", "TIME_LIMIT", "EXERCISES", "CHECKS", "run", "draw", "public", "answer_results",
-           *CHECKS]
+__all__ = ["Feedback", "WriteItYourself", "TIME_LIMIT", "EXERCISE_CLASSES", "EXERCISES", "CHECKS", "run", "draw",
+           "public", "answer_results", *CHECKS]

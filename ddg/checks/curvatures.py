@@ -47,6 +47,8 @@ def ends_wrong(got, want, call):
 
 
 class TurningAngles(Exercise):
+    """``turning_angles(vertices)``: clockwise turning angle at every vertex of a closed polygon, in ``(-pi, pi]``."""
+
     name = "turning_angles"
     expects = "the closed curve turns at every vertex, v_0 and v_(n-1) included"
     forbidden = ("turning_angles", "curvature", "total_curvature", "turning_number", "bisector_normals")
@@ -106,7 +108,26 @@ class TurningAngles(Exercise):
     )
 
 
+def _mirrored(want, call):
+    """A prediction: the right polygon reflected in the line of its first edge."""
+    start, heading = g.build(call.args[2]), call.args[3]
+    u = np.array([np.cos(heading), np.sin(heading)])
+    d = want - start
+    return start + 2 * np.outer(d @ u, u) - d
+
+
+def _turned(angle):
+    """A prediction: the right polygon turned about its start by ``angle(call)``."""
+    return lambda want, call: g.build(call.args[2]) + (want - g.build(call.args[2])) @ g.rotation(angle(call)).T
+
+
 class Rebuild(Exercise):
+    """``rebuild(psi, lengths, start, heading)``: vertices ``v_0 ... v_n`` from turning angles and edge lengths.
+
+    ``psi[i]`` is the clockwise turn at ``v_i``, ``lengths[i] = |e_{i+1/2}|``, ``start = v_0`` and
+    ``heading`` is the angle (counter-clockwise from the x-axis) of the first edge ``e_{1/2}``.
+    """
+
     name = "rebuild"
     expects = "the points v_0 ... v_n, each (x, y): n + 1 rows of 2"
 
@@ -127,30 +148,19 @@ class Rebuild(Exercise):
                           f"a convex {len(convex)}-gon with its first edge made half as long again"))
         return calls
 
-    @staticmethod
-    def _mirrored(want, call):  # the same polygon reflected in the line of its first edge
-        start, heading = g.build(call.args[2]), call.args[3]
-        u = np.array([np.cos(heading), np.sin(heading)])
-        d = want - start
-        return start + 2 * np.outer(d @ u, u) - d
-
-    @staticmethod
-    def _turned(angle):
-        return lambda want, call: g.build(call.args[2]) + (want - g.build(call.args[2])) @ g.rotation(angle(call)).T
-
     mistakes = (
         Mistake("counter-clockwise", "the turns go the wrong way: psi is clockwise and the heading is "
                 "counter-clockwise, so each turn is subtracted from the heading (on {what}{at} expected {want}, "
-                "got {got})", predict=_mirrored.__func__),
+                "got {got})", predict=_mirrored),
         Mistake("first turn", "the first edge is turned by psi_0: psi_0 is the turn at v_0 between e_(-1/2) and "
                 "e_(1/2); the first edge leaves v_0 at the given heading, and the first turn to make is psi_1, at "
                 "v_1 (on {what}{at} expected {want}, got {got})",
-                predict=_turned.__func__(lambda call: -float(g.build(call.args[0])[0]))),
+                predict=_turned(lambda call: -float(g.build(call.args[0])[0]))),
         Mistake("missing last vertex", "it returns v_0 ... v_(n-1): the exercise asks for v_n as well, n + 1 points "
                 "(v_n = v_0 when the polygon closes)", predict=lambda want, call: want[:-1]),
         Mistake("heading clockwise", "the heading is measured counter-clockwise from the x-axis, as np.arctan2 "
                 "gives it; yours turns the first edge the other way (on {what}{at} expected {want}, got {got})",
-                predict=_turned.__func__(lambda call: -2 * call.args[3])),
+                predict=_turned(lambda call: -2 * call.args[3])),
         Mistake("origin", "it starts at the origin: the first vertex is `start` (on {what}{at} expected {want}, "
                 "got {got})", predict=lambda want, call: want - g.build(call.args[2])),
         Mistake("x and y", "x and y are swapped (on {what}{at} expected {want}, got {got})",
@@ -158,7 +168,14 @@ class Rebuild(Exercise):
     )
 
 
+def _times(factor):
+    """A prediction: the right gradient, each vector times ``factor(curve)`` at its vertex."""
+    return lambda want, call: want * factor(DiscreteCurve(g.build(call.args[0])))[:, None]
+
+
 class LengthGradient(Exercise):
+    """``length_gradient(vertices)``: the gradient of length of a closed polygon under the lecture's ``<.,.>``."""
+
     name = "length_gradient"
     expects = "a gradient vector (x, y) at every vertex of the closed curve, v_0 and v_(n-1) included"
     forbidden = ("length_gradient", "curvature", "laplacian")
@@ -169,18 +186,14 @@ class LengthGradient(Exercise):
                  Call((g.array(regular_polygon(12, 2.0).vertices),), "a clockwise regular 12-gon of radius 2")]
         return calls + [Call((g.array(g.unequal_polygon(rng).vertices),), "a random polygon") for _ in range(5)]
 
-    @staticmethod
-    def _times(factor):
-        return lambda want, call: want * factor(DiscreteCurve(g.build(call.args[0])))[:, None]
-
     mistakes = (
         INTEGER,
         Mistake("euclidean", "the weights are missing: the gradient for <.,.> divides by A_i, the dual length; "
-                "on {what}{at} yours is {got}, A_i times the expected {want}", predict=_times.__func__(
+                "on {what}{at} yours is {got}, A_i times the expected {want}", predict=_times(
                     lambda c: c.dual_lengths)),
         Mistake("one edge", "it divides by |e_(i+1/2)|, where the dual length A_i = (|e_(i-1/2)| + |e_(i+1/2)|) / 2 "
                 "belongs (on {what}{at} expected {want}, got {got})",
-                predict=_times.__func__(lambda c: c.dual_lengths / c.edge_lengths)),
+                predict=_times(lambda c: c.dual_lengths / c.edge_lengths)),
         Mistake("sign", "it points the wrong way: on a clockwise convex polygon the gradient of length points "
                 "outward (growing the polygon lengthens it), (T_(i-1/2) - T_(i+1/2)) / A_i; yours is minus that "
                 "(on {what}{at} expected {want}, got {got})", predict=lambda want, call: -want),
@@ -199,7 +212,24 @@ class LengthGradient(Exercise):
     )
 
 
+def _corners(convex, reflex):
+    """A prediction: A + eps L + eps^2 times the sum of convex(psi) at convex corners and reflex(psi) at
+    reflex ones."""
+    def predict(want, call):
+        curve, eps = (g.build(a) for a in call.args)
+        turns = curve.turning_angles
+        corners = convex(turns[turns > 0]).sum() + reflex(turns[turns < 0]).sum()
+        return np.float64(curve.signed_area + eps * curve.length + eps**2 * corners)
+    return predict
+
+
 class MinkowskiArea(Exercise):
+    """``minkowski_area(curve, eps)``: area of the Minkowski sum of a clockwise simple polygon with a disk.
+
+    It must be right for non-convex polygons too, for ``eps`` within the conditions of the book's
+    theorem on the Minkowski sum of a simple polygon. It is measured against shapely's round buffer.
+    """
+
     name = "minkowski_area"
     expects = "the area of the Minkowski sum, a single number"
     forbidden = ("inflated_area", "inflate")
@@ -223,33 +253,23 @@ class MinkowskiArea(Exercise):
         eps = call.args[1]
         return bool(abs(got - want) < 1e-6 * abs(want) + 1e-4 * eps**2)
 
-    @staticmethod
-    def _corners(convex, reflex):
-        """A + eps L + eps^2 times the sum of convex(psi) at convex corners and reflex(psi) at reflex ones."""
-        def predict(want, call):
-            curve, eps = (g.build(a) for a in call.args)
-            turns = curve.turning_angles
-            corners = convex(turns[turns > 0]).sum() + reflex(turns[turns < 0]).sum()
-            return np.float64(curve.signed_area + eps * curve.length + eps**2 * corners)
-        return predict
-
     mistakes = (
         Mistake("lecture's formula", "right on convex polygons, but {what} has reflex corners (psi_i < 0), where the "
                 "disk adds no sector: the two moved edges overlap there instead (the book's theorem on the "
                 "Minkowski sum of a simple polygon): expected {want}, got {got}",
-                predict=_corners.__func__(lambda p: p / 2, lambda p: p / 2)),
+                predict=_corners(lambda p: p / 2, lambda p: p / 2)),
         Mistake("overlap ignored", "at a reflex corner the two rectangles on the edges overlap, and the overlap, "
                 "counted twice, must be taken off once (on {what}: expected {want}, got {got})",
-                predict=_corners.__func__(lambda p: p / 2, lambda p: 0 * p)),
+                predict=_corners(lambda p: p / 2, lambda p: 0 * p)),
         Mistake("overlap added", "at a reflex corner the overlap of the two rectangles must be taken off, not added "
                 "(on {what}: expected {want}, got {got})",
-                predict=_corners.__func__(lambda p: p / 2, lambda p: np.tan(-p / 2))),
+                predict=_corners(lambda p: p / 2, lambda p: np.tan(-p / 2))),
         Mistake("offset", "the kite eps^2 tan(psi/2) belongs to the offset; at a convex corner the Minkowski sum adds "
                 "a disk sector, eps^2 psi / 2 (on {what}: expected {want}, got {got})",
-                predict=_corners.__func__(lambda p: np.tan(p / 2), lambda p: np.tan(p / 2))),
+                predict=_corners(lambda p: np.tan(p / 2), lambda p: np.tan(p / 2))),
         Mistake("half sector", "a factor of 2 in the sectors: a sector of angle psi and radius eps has area "
                 "eps^2 psi / 2 (on {what}: expected {want}, got {got})",
-                predict=_corners.__func__(lambda p: p / 4, lambda p: np.tan(p / 2))),
+                predict=_corners(lambda p: p / 4, lambda p: np.tan(p / 2))),
         Mistake("no strips", "the rectangles on the edges are missing: together they add eps L (on {what}: "
                 "expected {want}, got {got})", predict=lambda want, call: want - call.args[1] * g.build(
                     call.args[0]).length),

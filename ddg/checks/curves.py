@@ -12,7 +12,19 @@ from .curvatures import READ_ONLY, shifted, wrap_around
 from .judge import Call, Exercise, Mistake, given
 
 
+def _centre(side, radius, direction="normal"):
+    """A prediction: gamma(t) - side(kappa, call) radius(kappa) N (or T, ``direction="tangent"``)."""
+    def predict(want, call):
+        curve, t = (g.build(a) for a in call.args)
+        kappa = curve.curvature(t)
+        axis = curve.normal(t) if direction == "normal" else curve.tangent(t)
+        return curve.position(t) - (side(kappa, call) * radius(kappa))[:, None] * axis
+    return predict
+
+
 class OsculatingCenter(Exercise):
+    """``osculating_center(curve, t)``: centre of the osculating circle of a ``ddg.smooth`` curve at ``t``."""
+
     name = "osculating_center"
     unit = "point"
     expects = "one centre (x, y) for each parameter in t"
@@ -30,33 +42,24 @@ class OsculatingCenter(Exercise):
         calls.append(Call((bean, g.array(t)), "a non-convex curve, which bends both ways"))
         return calls
 
-    @staticmethod
-    def _centre(side, radius, direction="normal"):
-        def predict(want, call):
-            curve, t = (g.build(a) for a in call.args)
-            kappa = curve.curvature(t)
-            axis = curve.normal(t) if direction == "normal" else curve.tangent(t)
-            return curve.position(t) - (side(kappa, call) * radius(kappa))[:, None] * axis
-        return predict
-
     mistakes = (
         Mistake("outward", "on the wrong side: the centre lies where the curve bends to, and N = J T points the other "
                 "way on a clockwise circle, so it is gamma - N / kappa (on {what}{at} expected {want}, got {got})",
-                predict=_centre.__func__(lambda k, call: -1.0, lambda k: 1 / k)),
+                predict=_centre(lambda k, call: -1.0, lambda k: 1 / k)),
         Mistake("unsigned", "right where kappa > 0, but on the wrong side where the curve bends the other way: divide "
                 "by the signed kappa, not |kappa| (on {what}{at} expected {want}, got {got})",
-                predict=_centre.__func__(lambda k, call: 1.0, lambda k: 1 / np.abs(k))),
+                predict=_centre(lambda k, call: 1.0, lambda k: 1 / np.abs(k))),
         Mistake("side of the curve", "the side is decided once for the whole curve; it belongs to each point, by the "
-                "sign of kappa there (on {what}{at} expected {want}, got {got})", predict=_centre.__func__(
+                "sign of kappa there (on {what}{at} expected {want}, got {got})", predict=_centre(
                     lambda k, call: 1.0 if list(call.args[0].values())[0][-1] else -1.0, lambda k: 1 / np.abs(k))),
         Mistake("side of the first point", "the side is decided at the first point and used at all; it belongs to each "
                 "point, by the sign of kappa there (on {what}{at} expected {want}, got {got})",
-                predict=_centre.__func__(lambda k, call: np.sign(k[0]), lambda k: 1 / np.abs(k))),
+                predict=_centre(lambda k, call: np.sign(k[0]), lambda k: 1 / np.abs(k))),
         Mistake("no reciprocal", "the distance to the centre is the radius of curvature 1/|kappa|, not |kappa| (on "
-                "{what}{at} expected {want}, got {got})", predict=_centre.__func__(lambda k, call: 1.0, lambda k: k)),
+                "{what}{at} expected {want}, got {got})", predict=_centre(lambda k, call: 1.0, lambda k: k)),
         Mistake("along the tangent", "the centre lies on the normal line through the point, not along the tangent "
                 "(on {what}{at} expected {want}, got {got})",
-                predict=_centre.__func__(lambda k, call: 1.0, lambda k: 1 / k, "tangent")),
+                predict=_centre(lambda k, call: 1.0, lambda k: 1 / k, "tangent")),
         Mistake("vector", "the centre is a point, gamma(t) - N / kappa, not the vector from the curve to it (on "
                 "{what}{at} expected {want}, got {got})",
                 predict=lambda want, call: want - g.build(call.args[0]).position(g.build(call.args[1]))),
@@ -64,6 +67,12 @@ class OsculatingCenter(Exercise):
 
 
 class Staircase(Exercise):
+    """``staircase(curve, m)``: the ``8m`` vertices of a closed staircase around a ``ddg.smooth`` ellipse.
+
+    ``v[2k]`` is the point ``curve.position(2 pi k / (4m))`` and ``v[2k + 1]`` the corner after it;
+    steps are horizontal or vertical and corners lie outside the ellipse.
+    """
+
     name = "staircase"
     expects = "8m vertices (x, y): a point on the ellipse, then a corner, 4m times"
 
@@ -100,6 +109,13 @@ METHODS = ("bisector", "length-weighted", "length-gradient", "area-gradient")
 
 
 class VertexNormals(Exercise):
+    """``vertex_normals(curve, method)``: unit normals at the vertices of a closed curve.
+
+    ``method`` is ``"bisector"`` (the unit bisector of the two edge normals), ``"length-weighted"``
+    (the edge normals averaged with weights ``|e|``), ``"length-gradient"`` (the direction of the
+    gradient of length) or ``"area-gradient"`` (the direction of the gradient of the signed area).
+    """
+
     name = "vertex_normals"
     expects = "a unit normal (x, y) at every vertex of the closed curve, v_0 and v_(n-1) included"
     forbidden = ("bisector_normals", "length_gradient", "curvature")

@@ -101,18 +101,14 @@ def short(values, digits=4):
     return np.array2string(values, precision=digits, threshold=6, suppress_small=True, separator=", ")
 
 
-EXERCISES = {}
-"""Every coding exercise, by the name of the function it asks for: defining a subclass of
-:class:`Exercise` with a ``name`` registers it (ddg/checks/__init__.py imports the modules)."""
-
-
 class Exercise:
-    """One coding exercise. Subclasses set :attr:`name`, :attr:`mistakes` and define the methods."""
+    """One coding exercise. Subclasses set :attr:`name`, :attr:`mistakes` and define the methods.
 
-    def __init_subclass__(cls, **kwargs):
-        super().__init_subclass__(**kwargs)
-        if cls.name:
-            EXERCISES[cls.name] = cls()
+    A subclass's docstring says what the exercise asks for, starting with the call, as in
+    ``turning_angles(vertices)``: that text is where the docstring of its ``check_*`` function
+    comes from. Defining a subclass registers nothing: ``EXERCISE_CLASSES`` in
+    ``ddg/checks/__init__.py`` lists the exercises of the book.
+    """
 
     name = ""
     forbidden = ()  # DiscreteCurve quantities the answer must not use

@@ -1,10 +1,10 @@
 """Journey: a new instructor adds an exercise with a check, following CONTRIBUTING.md to the letter.
 
 On a copy of the repository, the guide's blocks are applied in its order (the code appended where
-it says, the cells saved and added with its command), and its commands are run. Before the
-catalogue entry is added, the check of the exercises must name what is missing; after it, the
-new exercise's catalogue tests and its chapter must pass, and the notebook must list the exercise
-for the grader.
+it says, the class added to the list of exercises below the line it names, the cells saved and
+added with its command), and its commands are run. Before the catalogue entry is added, the check
+of the exercises must name what is missing; after it, the new exercise's catalogue tests and its
+chapter must pass, and the notebook must list the exercise for the grader.
 """
 
 import json
@@ -13,13 +13,13 @@ import subprocess
 
 from journey_helpers import ROOT, copy_repository, run
 
-BLOCK = re.compile(r"<!-- (append to|cells|run):? ?([^>]*?) -->\n(`{3,})\w*\n(.*?)\n\3\n", re.S)
+BLOCK = re.compile(r"<!-- (append to|add to the list|cells|run):? ?([^>]*?) -->\n(`{3,})\w*\n(.*?)\n\3\n", re.S)
 
 
 def steps():
     """The guide's blocks, in order: (kind, where, text)."""
     found = [(kind, where.strip(), text) for kind, where, _, text in BLOCK.findall((ROOT / "CONTRIBUTING.md").read_text())]
-    assert [kind for kind, _, _ in found] == ["append to"] * 4 + ["cells", "run"], found
+    assert [kind for kind, _, _ in found] == ["append to"] * 2 + ["add to the list", "append to", "cells", "run"], found
     return found
 
 
@@ -31,6 +31,11 @@ def test_an_exercise_added_from_the_guide_is_checked_graded_and_built(tmp_path):
         if kind == "append to" and where != "tests/unit/catalogue.py":
             with (copy / where).open("a") as file:
                 file.write("\n\n" + text + "\n")
+        elif kind == "add to the list":  # "FILE, after LINE": the block goes below the line that starts with LINE
+            path, _, after = where.partition(", after ")
+            lines = (copy / path).read_text().splitlines(keepends=True)
+            at = next(i for i, line in enumerate(lines) if line.strip().startswith(after))
+            (copy / path).write_text("".join(lines[:at + 1]) + text + "\n" + "".join(lines[at + 1:]))
         elif kind == "cells":
             (copy / where).write_text(text + "\n")
     commands = [line for line in blocks[-1][2].splitlines() if line.strip()]
