@@ -2,9 +2,10 @@
 
 A small reference implementation to read next to the lecture. It needs numpy only; plotting
 (``ddg.plot``), the explorers (``ddg.explore``) and the homework checks (``ddg.checks``) need the
-extras named in their error messages. Conventions: clockwise is
-positive (a clockwise circle has curvature ``+1/r`` and outward normals ``N = J T``). What it
-refuses it refuses as one of the errors of ``ddg.errors``, all of them ``ValueError``.
+extras named in their error messages, and so do the chapters' own helpers (``ddg.notes``) where
+they draw or measure regions. Conventions: clockwise is positive (a clockwise circle has
+curvature ``+1/r`` and outward normals ``N = J T``). What it refuses it refuses as one of the
+errors of ``ddg.errors``, all of them ``ValueError``.
 
 >>> import ddg
 >>> square = ddg.DiscreteCurve([[0, 0], [0, 1], [1, 1], [1, 0]])   # clockwise
@@ -26,7 +27,7 @@ __version__ = "0.1.0"
 # The geometry above needs numpy only. These parts need more (matplotlib, ipywidgets, shapely):
 # each is imported on first use, so `import ddg` works without them, and a missing
 # dependency is an ImportError that names the extra to install (ddg/_extras.py).
-_OPTIONAL = ("plot", "explore", "checks")
+_OPTIONAL = ("plot", "explore", "checks", "notes")
 
 
 def __getattr__(name):

@@ -226,7 +226,8 @@ def lengths(vectors):
         fast = np.sqrt(x * x + y * y)
     if len(fast) and SAFE[0] < fast.min() and fast.max() < SAFE[1]:
         return fast
-    return np.hypot(x, y)
+    with np.errstate(over="ignore"):  # a length beyond the floats: the curve refuses it
+        return np.hypot(x, y)
 
 
 def unit(vectors, norms):

@@ -10,6 +10,8 @@ is, and exits with status 1. It looks at
 * every function and class method a notebook of the edition defines, in any cell, hidden or not
   (each notebook's code cells run in a process of their own, as the notebook would run them);
 * every function, method and mistake's recogniser in the edition's ``ddg/checks``;
+* every function of the edition's ``ddg/notes``, the chapters' helpers that their hidden cells
+  import (a helper moved out of a notebook must stay in the guard's view);
 * every function of the site's scripts (``html/_static/ddg-*.js``), run by Node on the vertices of
   the hidden input of :data:`POLYGON_EXERCISES` (or on the script's own curve made of them).
 
@@ -130,6 +132,20 @@ def checks_leaks(secret):
     return [(where, found) for where, function in candidates if (found := passes(_detached(function), secret))]
 
 
+def notes_leaks(secret, package="ddg.notes"):
+    """The answers in ``package`` (the chapters' helpers): every function and method of its modules."""
+    import importlib
+    import pkgutil
+
+    root = importlib.import_module(package)
+    modules = [root] + [importlib.import_module(info.name)
+                        for info in pkgutil.walk_packages(root.__path__, f"{package}.")]
+    candidates = [(f"{module.__name__}.{name}", function) for module in modules
+                  for _, name, function in _functions(vars(module), module.__name__)
+                  if function.__module__ == module.__name__]
+    return [(where, found) for where, function in candidates if (found := passes(function, secret))]
+
+
 def script_leaks(site, secret):
     """The answers in the site's scripts: each function of ``window`` objects the scripts define, called
     by Node with the vertices of the hidden input of :data:`POLYGON_EXERCISES` (or a curve made of
@@ -247,6 +263,7 @@ def leaks(edition, site=None, secret=None):
     for path in sorted((edition / "book").glob("*.ipynb")):
         found += _in_child(lambda path=path: notebook_leaks(path, secret))
     found += _in_child(lambda: checks_leaks(secret))
+    found += _in_child(lambda: notes_leaks(secret))
     site = pathlib.Path(site) if site else edition / "html"
     if site.is_dir():
         found += script_leaks(site, secret)
