@@ -194,15 +194,19 @@ def previous(values):
     return np.concatenate((values[-1:], values[:-1]))
 
 
-def edges(v, closed):
-    """``v_{i+1} - v_i`` for each edge: ``n`` of them if ``closed``, else ``n - 1`` (infinite where one
-    overflows; the curve refuses those)."""
-    e = np.empty_like(v) if closed else np.empty((len(v) - 1, 2))
+def edge_components(v, closed):
+    """The edges' ``x`` and ``y`` components, each as one contiguous array laid out so that ``X[:-1]``
+    and ``X[1:]`` are the edges into and out of each vertex where the turn is defined: for a closed
+    curve ``[e_{n-1/2}, e_{1/2}, ..., e_{n-1/2}]`` (``n + 1`` entries), for an open one the ``n - 1``
+    edges. Infinite where an edge overflows; the curve refuses those."""
+    x, y, n = v[:, 0], v[:, 1], len(v)
+    X, Y = (np.empty(n + 1 if closed else n - 1) for _ in range(2))
     with np.errstate(over="ignore"):
-        np.subtract(v[1:], v[:-1], out=e[: len(v) - 1])
-        if closed:
-            np.subtract(v[0], v[-1], out=e[-1])
-    return e
+        for column, out in ((x, X), (y, Y)):
+            np.subtract(column[1:], column[:-1], out=out[1:n] if closed else out)
+            if closed:
+                out[0] = out[n] = column[0] - column[-1]
+    return X, Y
 
 
 def J(u):
@@ -215,15 +219,16 @@ def cross(a, b):
     return a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
 
 
-def lengths(vectors):
-    """Euclidean lengths of the rows, without under- or overflow at any scale.
+def lengths(x, y):
+    """``|(x_i, y_i)|`` for each ``i``, without under- or overflow at any scale.
 
     ``sqrt(x*x + y*y)`` is several times cheaper than ``np.hypot``; it is used where every length
     lies in :data:`SAFE`, where its squares can neither under- nor overflow.
     """
-    x, y = vectors[:, 0], vectors[:, 1]
     with np.errstate(over="ignore", under="ignore", invalid="ignore"):
-        fast = np.sqrt(x * x + y * y)
+        fast = x * x
+        fast += y * y
+        np.sqrt(fast, out=fast)
     if len(fast) and SAFE[0] < fast.min() and fast.max() < SAFE[1]:
         return fast
     with np.errstate(over="ignore"):  # a length beyond the floats: the curve refuses it
@@ -239,11 +244,12 @@ def unit(vectors, norms):
     return np.ldexp(vectors, -e[:, None]) / np.ldexp(norms, -e)[:, None]
 
 
-def tan_half_turn(a, b, la, lb, v, first):
-    """``tan(psi / 2)`` for the clockwise turn ``psi`` from each row of ``a`` to the row of ``b``.
+def tan_half_turn(X, Y, L, v, closed):
+    """``tan(psi / 2)`` for the clockwise turn ``psi`` at each vertex of ``v`` where it is defined.
 
-    ``a[j]`` and ``b[j]`` are the edges into and out of vertex ``v[first + j]`` (``la``, ``lb`` their
-    lengths). With ``|a||b| sin psi = -(a x b)`` (clockwise is positive) and ``|a||b| cos psi = a . b``,
+    ``X``, ``Y`` are the edges' components and ``L`` their lengths, laid out by
+    :func:`edge_components`: the turn ``j`` is from ``a = (X, Y)[j]`` to ``b = (X, Y)[j + 1]``
+    (every vertex of a closed curve; the interior ones of an open one). With ``|a||b| sin psi = -(a x b)`` (clockwise is positive) and ``|a||b| cos psi = a . b``,
 
         tan(psi/2) = -(a x b) / (|a||b| + a . b) = (|a||b| - a . b) / -(a x b).
 
@@ -260,20 +266,38 @@ def tan_half_turn(a, b, la, lb, v, first):
     outside :data:`SAFE`, each row is first scaled by a power of two (exactly), so that no product
     under- or overflows and the result is the same at every scale.
     """
-    if not (len(la) and SAFE[0] < min(la.min(), lb.min()) and max(la.max(), lb.max()) < SAFE[1]):
+    ax, ay, bx, by, la, lb = X[:-1], Y[:-1], X[1:], Y[1:], L[:-1], L[1:]
+    if not (len(L) and SAFE[0] < L.min() and L.max() < SAFE[1]):
         ea, eb = np.frexp(la)[1], np.frexp(lb)[1]
-        a, b, la, lb = np.ldexp(a, -ea[:, None]), np.ldexp(b, -eb[:, None]), np.ldexp(la, -ea), np.ldexp(lb, -eb)
-    dot = a[:, 0] * b[:, 0]
-    dot += a[:, 1] * b[:, 1]
-    minus_cross = a[:, 1] * b[:, 0]
-    minus_cross -= a[:, 0] * b[:, 1]
+        ax, ay, la = np.ldexp(ax, -ea), np.ldexp(ay, -ea), np.ldexp(la, -ea)
+        bx, by, lb = np.ldexp(bx, -eb), np.ldexp(by, -eb), np.ldexp(lb, -eb)
+    dot = ax * bx
+    dot += ay * by
+    minus_cross = ay * bx
+    minus_cross -= ax * by
     ll = la * lb
+    t = ll + dot
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        t = np.where(dot >= 0, minus_cross / (ll + dot), (ll - dot) / minus_cross)
-    near = np.flatnonzero((dot < 0) & (8 * np.abs(minus_cross) < ll))
+        np.divide(minus_cross, t, out=t)  # right where a . b >= 0: most turns
+        wide = np.flatnonzero(dot < 0) if len(dot) and dot.min() < 0 else np.zeros(0, np.intp)
+        t[wide] = (ll[wide] - dot[wide]) / minus_cross[wide]
+    near = wide[8 * np.abs(minus_cross[wide]) < ll[wide]]
     if len(near):  # within about 7 degrees of a turn straight back: the exact turn of the vertices
-        t[near] = _exact_tan_half_turn(v, near + first)
+        t[near] = _exact_tan_half_turn(v, near + (0 if closed else 1))
     return t
+
+
+def sin_half(t):
+    """``sin(psi / 2)`` from ``t = tan(psi / 2)``: ``t / sqrt(1 + t^2)``, and ``sign(t)`` where
+    ``|t| > 1e150`` (there ``1 / sqrt(1 + 1 / t^2)`` is 1 to double precision)."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        s = t * t
+        big = np.flatnonzero(s > 1e300) if len(s) and s.max() > 1e300 else np.zeros(0, np.intp)  # |t| > 1e150
+        s += 1.0
+        np.sqrt(s, out=s)
+        np.divide(t, s, out=s)
+    s[big] = np.sign(t[big])
+    return s
 
 
 def _exact_tan_half_turn(v, at):
@@ -321,52 +345,6 @@ def exact_sum(terms):
         if np.array_equal(before, terms):
             break
     return terms[:, -1]
-
-
-# ---------------------------------------------------------------------- linear algebra
-
-
-def solve_cyclic_tridiagonal(a, b, c, d):
-    """Solve ``a_i x_{i-1} + b_i x_i + c_i x_{i+1} = d_i`` for ``i`` mod ``m`` (``d``: shape ``(m, 2)``).
-
-    Cyclic reduction, vectorized: each pass eliminates the odd-numbered unknowns from the equations
-    of their even-numbered neighbours, which leaves a cyclic tridiagonal system half the size
-    (when ``m`` is odd, the last and first unknowns are both even and stay coupled directly). The
-    last small system is solved densely and the odd unknowns are recovered on the way back: ``log2
-    m`` passes of numpy work, ``O(m)`` time and memory, where a dense solve costs ``O(m^3)``.
-    Without pivoting, elimination is stable for diagonally dominant systems such as ``I - dt G Lap``.
-
-    >>> m = 7; x = np.arange(2.0 * m).reshape(m, 2)
-    >>> a, b, c = np.full(m, -1.0), np.full(m, 4.0), np.full(m, -1.0)
-    >>> d = b[:, None] * x + a[:, None] * np.roll(x, 1, axis=0) + c[:, None] * np.roll(x, -1, axis=0)
-    >>> bool(np.allclose(solve_cyclic_tridiagonal(a, b, c, d), x))
-    True
-    """
-    levels = []
-    while len(b) > 4:
-        m = len(b)
-        j = np.arange(0, m, 2)  # the unknowns kept
-        left, right = (j - 1) % m, (j + 1) % m
-        alpha, gamma = -a[j] / b[left], -c[j] / b[right]  # multiples of the neighbouring equations
-        new_a, new_c = alpha * a[left], gamma * c[right]
-        if m % 2:  # unknowns m - 1 and 0 are both kept: their coupling stays as it is
-            alpha[0] = gamma[-1] = 0.0
-            new_a[0], new_c[-1] = a[0], c[-1]
-        levels.append((a, b, c, d))
-        b, d = b[j] + alpha * c[left] + gamma * a[right], d[j] + alpha[:, None] * d[left] + gamma[:, None] * d[right]
-        a, c = new_a, new_c
-    m, i = len(b), np.arange(len(b))
-    M = np.zeros((m, m))
-    for offset, coefficients in ((-1, a), (0, b), (1, c)):  # three diagonals; they overlap when m < 3
-        np.add.at(M, (i, (i + offset) % m), coefficients)
-    x = np.linalg.solve(M, d)
-    for a, b, c, d in reversed(levels):  # back-substitute the odd unknowns of each level
-        m = len(b)
-        full, odd = np.empty_like(d), np.arange(1, m, 2)
-        full[::2] = x
-        full[odd] = (d[odd] - a[odd, None] * full[odd - 1] - c[odd, None] * full[(odd + 1) % m]) / b[odd, None]
-        x = full
-    return x
 
 
 # -------------------------------------------------------------------------------- the area

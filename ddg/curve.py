@@ -127,7 +127,13 @@ class DiscreteCurve:
                [ 1., -1.],
                [-1.,  0.]])
         """
-        return nx.frozen(nx.edges(self._v, self.closed))
+        X, Y, _ = self._components  # X[0] repeats a closed curve's last edge
+        return nx.frozen(np.stack((X[int(self.closed):], Y[int(self.closed):]), axis=1))
+
+    @cached_property
+    def _components(self) -> tuple[Array, Array, Array]:  # the edges' x, y and lengths, laid out for the turns
+        X, Y = nx.edge_components(self._v, self.closed)
+        return X, Y, nx.lengths(X, Y)
 
     @cached_property
     def edge_lengths(self) -> Array:
@@ -136,7 +142,7 @@ class DiscreteCurve:
         >>> DiscreteCurve([[0, 0], [3, 4], [3, 0]]).edge_lengths
         array([5., 4., 3.])
         """
-        return nx.frozen(nx.lengths(self.edges))
+        return nx.frozen(self._components[2][int(self.closed):])
 
     @cached_property
     def length(self) -> float:
@@ -175,9 +181,7 @@ class DiscreteCurve:
         >>> DiscreteCurve([[0, 0], [0, 1], [1, 1], [1, 0]]).tan_half_psi        # tan(45 degrees)
         array([1., 1., 1., 1.])
         """
-        a, b = self._at_vertices(self.edges)
-        la, lb = self._at_vertices(self.edge_lengths)
-        return nx.frozen(nx.tan_half_turn(a, b, la, lb, self._v, 0 if self.closed else 1))
+        return nx.frozen(nx.tan_half_turn(*self._components, self._v, self.closed))
 
     @cached_property
     def reversals(self) -> npt.NDArray[np.intp]:
@@ -214,9 +218,9 @@ class DiscreteCurve:
         >>> DiscreteCurve([[0, 0], [3, 4], [3, 0]]).dual_lengths
         array([4. , 4.5, 3.5])
         """
-        half = self.edge_lengths * 0.5
+        half = self._components[2] * 0.5
         if self.closed:
-            return nx.frozen(np.add(nx.previous(half), half, out=half))
+            return nx.frozen(np.add(half[:-1], half[1:], out=half[1:]))
         return nx.frozen(np.concatenate(([0.0], half)) + np.concatenate((half, [0.0])))
 
     @cached_property
@@ -312,8 +316,8 @@ class DiscreteCurve:
         * ``"sine"``:    ``k_i = 4 sin(psi_i/2) / (2 A_i)``   (eq. 3, from the gradient of length)
         * ``"tangent"``: ``k_i = 4 tan(psi_i/2) / (2 A_i)``   (eq. 4, from offset inflation)
 
-        Each is computed as ``psi_i / A_i`` (and so on), which cannot overflow where ``2 A_i``
-        would. Accuracy: that of ``psi_i`` (see :attr:`turning_angles`) and a few rounding errors;
+        Each is computed as ``psi_i / A_i``, ``2 sin(psi_i/2) / A_i``, ``2 tan(psi_i/2) / A_i``, which
+        cannot overflow where ``2 A_i`` would. Accuracy: that of ``psi_i`` (see :attr:`turning_angles`) and a few rounding errors;
         a curvature below the smallest normal float (2.2e-308) keeps only its subnormal bits. The
         tangent formula diverges where the curve turns straight back (``psi_i = pi``): there it
         raises :class:`~ddg.errors.DegenerateCurveError`, and a curvature beyond the largest float
@@ -326,19 +330,20 @@ class DiscreteCurve:
         nx.choose(kind, CURVATURES, "curvature kind")
         cache = self.__dict__.setdefault("_curvatures", {})
         if kind not in cache:
-            if kind == "tangent" and len(self.reversals):
-                raise DegenerateCurveError(f"the tangent curvature (eq. 4) diverges at vertex {self.reversals[0]}: the "
-                                           "curve turns straight back there (psi = pi)")
             with np.errstate(over="ignore", invalid="ignore", under="ignore"):
                 if kind == "angle":
                     k = self.turning_angles / self._A                    # eq. (1)
                 elif kind == "sine":
-                    k = np.sin(self.turning_angles * 0.5)                # eq. (3)
+                    k = nx.sin_half(self.tan_half_psi)                   # eq. (3), sin(psi/2) from tan(psi/2)
                     k *= 2.0
                     k /= self._A
                 else:
-                    k = self.tan_half_psi * 2.0                         # eq. (4)
+                    k = self.tan_half_psi * 2.0                          # eq. (4)
                     k /= self._A
+                finite = np.isfinite(np.add.reduce(k))
+            if kind == "tangent" and not finite and len(self.reversals):
+                raise DegenerateCurveError(f"the tangent curvature (eq. 4) diverges at vertex {self.reversals[0]}: the "
+                                           "curve turns straight back there (psi = pi)")
             first = 0 if self.closed else 1
             nx.require_finite(k, lambda j: f"the {kind} curvature at vertex {j + first} is beyond the largest float "
                               f"(a turn of {np.degrees(self.turning_angles[j]):.6g} degrees between edges "
@@ -359,7 +364,7 @@ class DiscreteCurve:
         if kind == "angle":
             return float(self.turning_angles.sum())
         with np.errstate(over="ignore"):
-            half = np.sin(self.turning_angles / 2) if kind == "sine" else self.tan_half_psi
+            half = nx.sin_half(self.tan_half_psi) if kind == "sine" else self.tan_half_psi
             total = 2.0 * float(half.sum())
         if not np.isfinite(total):
             raise OutOfRangeError(f"the total {kind} curvature is beyond the largest float (about 1.8e308)")

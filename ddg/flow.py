@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import _numerics as nx
-from ._numerics import solve_cyclic_tridiagonal
+from ._linalg import solve_cyclic_tridiagonal
 from .curve import Array, DiscreteCurve
 from ._frame import Frame, Settings
 from .polygons import regular_polygon  # noqa: F401 (the examples' polygons)
@@ -148,7 +148,7 @@ def semi_implicit_step(curve: DiscreteCurve, kind: str, dt: float) -> Array:
     ``(G Lap v)_i = g_i / A_i * ((v_{i+1} - v_i) / |e_{i+1/2}| - (v_i - v_{i-1}) / |e_{i-1/2}|)`` equals
     ``-k_i N_i`` at the current vertices (``curve.laplacian``, with the speeds ``g_i``); treating it
     implicitly removes the ``h^2`` step limit. The system is cyclic tridiagonal and diagonally
-    dominant: :func:`~ddg._numerics.solve_cyclic_tridiagonal`.
+    dominant: :func:`~ddg._linalg.solve_cyclic_tridiagonal`.
 
     >>> square = regular_polygon(4)
     >>> bool(np.abs(semi_implicit_step(square, "sine", 1e-9) - square.vertices).max() < 1e-8)
@@ -261,10 +261,11 @@ def flow(curve: DiscreteCurve, kind: str = "sine", t_end: float = 1.0, *, method
     end = frame.local_time(float(t_end))
     lifetime = remaining_lifetime(start, kind)
     degenerate = not 0 < lifetime < np.inf  # at the curve's own scale: a collapsed curve
-    if not degenerate and not 0 < frame.time(lifetime) < np.inf:
+    if not degenerate and not np.finfo(float).tiny < frame.time(lifetime) < np.inf:  # so every step is > 0
         power = np.log10(lifetime) + 2 * frame.exponent * np.log10(2)
-        raise OutOfRangeError(f"the curve's lifetime under the flow, about 1e{power:.0f}, is beyond the range of floats: "
-                         "scale the curve (times scale with the square of its size)")
+        raise OutOfRangeError(f"the curve's lifetime under the flow, about 1e{power:.0f}, is beyond the range of floats "
+                              "in which its steps can be told apart: scale the curve (times scale with the square of "
+                              "its size)")
     if dt is not None and not degenerate and min(end, lifetime) / frame.local_time(dt) > max_steps:
         needed = min(end, lifetime) / frame.local_time(dt)
         raise OutOfRangeError(f"dt = {dt!r} would take about {needed:.1e} steps to reach t = "

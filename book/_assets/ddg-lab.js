@@ -108,6 +108,9 @@
     var t = (la * lb - d) / minus_cross, max = Number.MAX_VALUE;
     return Math.min(Math.max(t, -max), max);  // beyond the floats, but not a reversal
   }
+  function sin_half(t) {  // _numerics.sin_half: sin(psi/2) = t / sqrt(1 + t^2) from t = tan(psi/2); sign(t) past 1e150
+    return Math.abs(t) > 1e150 ? Math.sign(t) : t / Math.sqrt(t * t + 1);
+  }
   function two_difference(x, y) { var d = x - y, z = d - x; return [d, (x - (d - z)) - (y + z)]; }  // d + e == x - y
   function exact_sum(terms) {  // _numerics.exact_sum: error-free cascades until nothing changes; the last holds the sum
     terms = terms.slice();
@@ -228,7 +231,7 @@
     kind = kind || "angle";
     var psi = this.turning_angles, t = this.tan_half_psi, k = this.dual_lengths.map(function (A, i) {
       if (kind === "angle") return psi[i] / A;                           // eq. (1): 2 psi / (2 A)
-      if (kind === "sine") return 2 * Math.sin(psi[i] * 0.5) / A;        // eq. (3): 4 sin(psi/2) / (2 A)
+      if (kind === "sine") return sin_half(t[i]) * 2 / A;                // eq. (3): 4 sin(psi/2) / (2 A)
       return t[i] * 2 / A;                                               // eq. (4): 4 tan(psi/2) / (2 A)
     });
     if (kind === "tangent" && this.reversals.length) fail("the tangent curvature (eq. 4) diverges at vertex " + this.reversals[0] + ": the curve turns straight back there (psi = pi)");
@@ -240,7 +243,7 @@
     kind = kind || "angle";
     this.curvature(kind);  // its refusals
     if (kind === "angle") return sum(this.turning_angles);
-    var total = 2 * sum(kind === "sine" ? this.turning_angles.map(function (p) { return Math.sin(p / 2); }) : this.tan_half_psi);
+    var total = 2 * sum(kind === "sine" ? this.tan_half_psi.map(sin_half) : this.tan_half_psi);
     if (!isFinite(total)) fail("the total " + kind + " curvature is beyond the largest float (about 1.8e308)");
     return total;
   };
@@ -308,7 +311,8 @@
     reversal(local);
     var lifetime = remaining_lifetime(local, kind);
     if (!(lifetime > 0 && lifetime < Infinity)) fail("stopped at t = 0: the curve is degenerate (its remaining lifetime is 0 to rounding)");
-    if (!(ldexp(lifetime, 2 * e) < Infinity)) fail("the curve's lifetime under the flow is beyond the range of floats: scale the curve (times scale with the square of its size)");
+    var life = ldexp(lifetime, 2 * e);
+    if (!(life > 2.2250738585072014e-308 && life < Infinity)) fail("the curve's lifetime under the flow is beyond the range of floats in which its steps can be told apart: scale the curve (times scale with the square of its size)");
     var step = Math.min(stable_step(local, kind, 0.25), 0.02 * lifetime);
     if (!(step > 1e-12 * lifetime)) fail("the step fell below 1e-12 of the curve's expected lifetime: the curve is about to vanish or degenerate");
     var vel = velocity(local, kind);
