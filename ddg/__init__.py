@@ -7,6 +7,9 @@ they draw or measure regions. Conventions: clockwise is positive (a clockwise ci
 curvature ``+1/r`` and outward normals ``N = J T``). What it refuses it refuses as one of the
 errors of ``ddg.errors``, all of them ``ValueError``.
 
+Every example in the docstrings runs as shown after ``import numpy as np`` and ``from ddg.<module>
+import *`` (for example ``from ddg.curve import *``, ``from ddg.smooth import *``).
+
 >>> import ddg
 >>> square = ddg.DiscreteCurve([[0, 0], [0, 1], [1, 1], [1, 0]])   # clockwise
 >>> square.turning_number, square.signed_area

@@ -109,6 +109,17 @@ def values(data, name, what="vertex", columns=None):
             i = int(np.flatnonzero(masked.reshape(len(masked), -1).any(axis=1))[0]) if masked.ndim else 0
             raise InputError(say(i, f"masked value: {data[i]}; drop or fill masked entries first (np.ma.compress_rows)"))
         data = data.data
+    hint = {"zip": "list(zip(...))", "generator": "list(...)", "map": "list(...)", "DiscreteCurve": "its .vertices",
+            "SmoothCurve": ".sample(n) for a DiscreteCurve, then its .vertices", "str": "numbers, not text",
+            "bytes": "numbers, not text", "dict": "a list of points"}.get(type(data).__name__)
+    try:
+        scalar = np.ndim(data) == 0 and (columns or not isinstance(data, numbers.Real))
+    except ValueError:  # ragged rows: said below
+        scalar = False
+    if hint or scalar:
+        kind = type(data).__name__
+        raise InputError(f"{name} must be an array of numbers{f' of shape (n, {columns})' if columns else ''}, got "
+                         f"{'an' if kind[0] in 'aeiou' else 'a'} {kind}{f': use {hint}' if hint else ''}")
     try:
         raw = np.asarray(data)
     except ValueError:  # rows of different lengths

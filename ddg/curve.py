@@ -51,7 +51,8 @@ class DiscreteCurve:
     :class:`~ddg.errors.DegenerateCurveError` for too few vertices or two consecutive equal ones
     (``v_{i+1} != v_i``), :class:`~ddg.errors.OutOfRangeError` for a length beyond the largest
     float; each names the vertex. Any scale works, and any distance from the origin: each method
-    says to what accuracy.
+    says to what accuracy. A curve does not change: its quantities are computed once and shared,
+    read-only (``.copy()`` one to change it), and setting one raises ``AttributeError``.
 
     >>> square = DiscreteCurve([[0, 0], [0, 1], [1, 1], [1, 0]])     # up, right, down, left
     >>> square
@@ -70,7 +71,8 @@ class DiscreteCurve:
             if self._closed and i == len(v) - 1:
                 raise DegenerateCurveError(f"the last vertex {i} repeats the first vertex 0 ({v[0]}); a closed curve's "
                                            "closing edge is implied, so leave the repeated vertex out")
-            raise DegenerateCurveError(f"vertices {i} and {i + 1} are equal ({v[i]}); consecutive vertices must differ")
+            raise DegenerateCurveError(f"vertices {i} and {i + 1} are equal ({v[i]}, as floats); consecutive vertices "
+                                       "must differ")
         if not np.isfinite(self.length):  # an edge, or only their sum
             nx.require_finite(lengths, lambda i: f"the edge from vertex {i} to vertex {(i + 1) % len(v)} is longer "
                               "than the largest float (about 1.8e308): scale the curve down", OutOfRangeError)
@@ -88,9 +90,14 @@ class DiscreteCurve:
         """
         return self._closed
 
-    @closed.setter
-    def closed(self, value: bool) -> None:
-        raise AttributeError("closed is read-only: make a new curve, DiscreteCurve(curve.vertices, closed=...)")
+    def __setattr__(self, name: str, value: object) -> None:
+        if not name.startswith("_"):  # a quantity set by hand would make the others disagree with it
+            raise AttributeError(f"{name} is read-only: a curve's quantities follow from its vertices; make a new "
+                                 f"curve, DiscreteCurve(vertices, closed=...), or keep your own value in a variable")
+        object.__setattr__(self, name, value)
+
+    def __delattr__(self, name: str) -> None:
+        self.__setattr__(name, None) if not name.startswith("_") else object.__delattr__(self, name)
 
     def __repr__(self) -> str:
         return f"DiscreteCurve(n={len(self)}, {'closed' if self.closed else 'open'}, length={self.length:.6g})"
@@ -391,7 +398,7 @@ class DiscreteCurve:
             g /= self.dual_lengths[:, None]
         nx.require_finite(g, lambda j: f"the gradient of length at vertex {j} is beyond the largest float "
                           f"(its edges are {self.dual_lengths[j]:.3g} long on average)", OutOfRangeError)
-        return nx.frozen(g)
+        return g  # a new array at every call: yours to change
 
     def laplacian(self, F: npt.ArrayLike) -> Array:
         """The discrete Laplacian of ``F`` on a closed curve (the book's chapter 4):
@@ -415,7 +422,7 @@ class DiscreteCurve:
             lap = (flux - nx.previous(flux)) / self.dual_lengths.reshape(shape)
         nx.require_finite(lap, lambda j: f"the Laplacian at vertex {j} is beyond the largest float: scale F down "
                           "or the curve up", OutOfRangeError)
-        return nx.frozen(lap)
+        return lap  # a new array at every call: yours to change
 
     # -------------------------------------------------------------- inflation (lecture §3.4)
 

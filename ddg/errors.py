@@ -17,7 +17,7 @@ Every error is a ``ValueError`` (code that catches ``ValueError`` keeps working)
 ...     ddg.DiscreteCurve([[0, 0], [0, 0], [1, 1]])
 ... except ddg.DegenerateCurveError as error:
 ...     print(error)
-vertices 0 and 1 are equal ([0. 0.]); consecutive vertices must differ
+vertices 0 and 1 are equal ([0. 0.], as floats); consecutive vertices must differ
 >>> issubclass(ddg.OutOfRangeError, ValueError)
 True
 """

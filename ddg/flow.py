@@ -41,6 +41,11 @@ class FlowRun:
     """What a run recorded: the first and the last state and the states in between, spaced by the
     curve's life (see :func:`flow`), snapshots for drawing, why it stopped, and its cost.
 
+    The snapshots lie where the curve is, and ``origin`` is ``(0, 0)``; but where a snapshot could
+    not be placed there (far from the origin a shrunken curve's vertices round onto each other),
+    every snapshot is relative to ``origin``, the first vertex of the starting curve: draw
+    ``origin + curve.vertices``, or draw all of them relative to ``origin``.
+
     >>> run = flow(regular_polygon(32), "angle", 0.1, snapshots=3, progress=False)
     >>> run.kind, run.method, run.stopped, [round(t, 3) for t, curve in run.snapshots]
     ('angle', 'explicit', 'reached t_end', [0.0, 0.05, 0.1])

@@ -8,6 +8,7 @@ measures arc length by quadrature, and samples itself into a :class:`~ddg.Discre
 
 from __future__ import annotations
 
+import numbers
 from collections.abc import Callable
 from functools import cached_property
 from typing import Any
@@ -90,9 +91,17 @@ def _adaptive(f, t0, t1, cells=1024, max_levels=60, max_cells=10**5):
 
 
 def _points(f, t):
-    """Evaluate a plane-curve callable at ``t`` (scalar or array) as an array of shape ``t.shape + (2,)``."""
-    t = np.asarray(t, dtype=float)
-    x, y = f(t)
+    """Evaluate a plane-curve callable at ``t`` (scalar or array) as an array of shape ``t.shape + (2,)``.
+
+    ``t`` must be real numbers (not text, NaN or infinity): an ``InputError`` names the first that is not.
+    """
+    t = np.asarray(t) if isinstance(t, (numbers.Real, np.ndarray, list, tuple)) else np.asarray(t, dtype=object)
+    if t.dtype.kind not in "iuf" or not np.isfinite(t).all():
+        bad = t.flat[0] if t.dtype.kind not in "iuf" else t[~np.isfinite(t)].flat[0]
+        raise InputError(f"t must be finite real numbers, got {bad!r}")
+    t = t.astype(float)
+    with np.errstate(over="ignore", invalid="ignore"):
+        x, y = f(t)
     return np.stack(np.broadcast_arrays(x, y, t)[:2], axis=-1)
 
 
@@ -226,8 +235,13 @@ class SmoothCurve:
         """
         d, dd = _points(self.dgamma, t), _points(self.ddgamma, t)
         speed = np.hypot(d[..., 0], d[..., 1])
-        T = d / speed[..., None]  # the same formula, arranged not to under- or overflow at any scale
-        return -((T[..., 0] * dd[..., 1] - T[..., 1] * dd[..., 0]) / speed) / speed
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            T = d / speed[..., None]  # the same formula, arranged not to under- or overflow at any scale
+            kappa = -((T[..., 0] * dd[..., 1] - T[..., 1] * dd[..., 0]) / speed) / speed
+        if not np.isfinite(kappa).all():
+            raise OutOfRangeError(f"the curvature of {self.name} at t = {np.asarray(t).flat[0]:.6g} is beyond the "
+                                  "largest float, or undefined (|gamma'| = 0)")
+        return kappa
 
     # ---------------------------------------------------------------------- arc length
 

@@ -195,7 +195,7 @@
     if (far >= 0) fail("the edge from vertex " + far + " to vertex " + (far + 1) % n + " is longer than the largest float (about 1.8e308): scale the curve down");
     var i = l.indexOf(0);
     if (i === n - 1) fail("the last vertex " + i + " repeats the first vertex 0 (" + v[0] + "); a closed curve's closing edge is implied, so leave the repeated vertex out");
-    if (i >= 0) fail("vertices " + i + " and " + (i + 1) + " are equal (" + v[i] + "); consecutive vertices must differ");
+    if (i >= 0) fail("vertices " + i + " and " + (i + 1) + " are equal (" + v[i] + ", as floats); consecutive vertices must differ");
     this.length = sum(l);                                                        // L = sum_i |e_{i+1/2}| (§3)
     if (!isFinite(this.length)) fail("the curve's length is beyond the largest float (about 1.8e308): scale it down");
     this.tangents = this.edges.map(function (e, i) { return [e[0] / l[i], e[1] / l[i]]; });  // T = e / |e|

@@ -36,11 +36,13 @@ import inspect
 import json
 import keyword
 import linecache
+import numbers
 import pathlib
 import re
 
 import numpy as np
 
+from ..errors import InputError
 from . import comparing, curvatures, curves, geometry
 from .judge import Call, CheckError, Feedback, judge
 from .runner import TIME_LIMIT, WriteItYourself, evaluate
@@ -104,6 +106,8 @@ def run(name, answer, seed=None, isolate=True, calls=None, kind="public"):
     ``isolate=False`` runs the answer in this process (no time limit, nothing switched off): for
     tests, where the answers are the test's own.
     """
+    if seed is not None and (isinstance(seed, bool) or not isinstance(seed, numbers.Integral)):
+        raise InputError(f"seed must be a whole number (it picks one of the sets of public input) or None, got {seed!r}")
     exercise = EXERCISES[name]
     label = getattr(answer, "__name__", name) if callable(answer) else name
     label = label if isinstance(label, str) else name

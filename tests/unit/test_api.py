@@ -56,8 +56,11 @@ def test_every_public_function_and_property_has_an_example(module):
 
 @pytest.mark.parametrize("module", every_module())
 def test_the_examples_run(module):
-    """Every docstring example of every module of ddg, as the reader would type it."""
-    found = doctest.DocTestFinder().find(importlib.import_module(module))
+    """Every docstring example of every module of ddg, as the reader would type it after
+    ``import numpy as np`` and ``from ddg.<module> import *`` (what ddg/__init__.py says)."""
+    imported = importlib.import_module(module)
+    names = getattr(imported, "__all__", [name for name in vars(imported) if not name.startswith("_")])
+    found = doctest.DocTestFinder().find(imported, globs={"np": np, **{name: getattr(imported, name) for name in names}})
     runner = doctest.DocTestRunner(optionflags=OPTIONS)
     with np.errstate(all="raise"):
         for test in found:

@@ -218,3 +218,49 @@ def test_a_flow_far_from_the_origin_is_the_run_at_the_origin_translated(offset, 
     for (t, far), (s, close_by) in zip(far_run.snapshots, near_run.snapshots, strict=True):
         placed = far.vertices + getattr(far_run, "origin", 0.0) - polygon.vertices[0]
         assert t == s and np.abs(placed - close_by.vertices).max() <= 4 * np.spacing(np.abs(polygon.vertices).max())
+
+
+# ----------------------------------------------------- what a new user tried (a helper, December 2026)
+
+
+@pytest.mark.parametrize(("make", "hint"), [
+    (lambda: zip([0, 1, 2], [0, 1, 0]), "list(zip(...))"), (lambda: (p for p in [[0, 0], [1, 1], [1, 0]]), "list(...)"),
+    (lambda: ddg.regular_polygon(4), "its .vertices"), (lambda: ddg.smooth.circle(), ".sample(n)"),
+    (lambda: "abc", "not text"), (lambda: b"ab", "not text"), (lambda: 5.0, "got a float"), (lambda: None, "NoneType"),
+])
+def test_what_is_not_an_array_is_refused_saying_what_to_use(make, hint):
+    with pytest.raises(ddg.InputError) as refusal:
+        ddg.DiscreteCurve(make())
+    assert hint in str(refusal.value) and "shape (n, 2)" in str(refusal.value)
+
+
+def test_a_curve_cannot_be_changed_after_it_is_made():
+    c = ddg.DiscreteCurve([[0, 0], [0, 1], [1, 1], [1, 0]])
+    for name in ("turning_angles", "signed_area", "closed", "anything"):
+        with pytest.raises(AttributeError, match=f"{name} is read-only"):
+            setattr(c, name, 0)
+        with pytest.raises(AttributeError, match="read-only"):
+            delattr(c, name)
+    assert c.turning_number == 1 and c.signed_area == 1.0 and np.all(c.curvature("tangent") == 2)
+    gradient = c.length_gradient()  # a new array at every call: the caller's to change
+    gradient *= 2
+    assert np.array_equal(c.length_gradient() * 2, gradient)
+
+
+@pytest.mark.parametrize("t", ["0.3", np.nan, [0.1, np.inf], None, "abc"])
+def test_a_smooth_curve_refuses_parameters_that_are_not_numbers(t):
+    with pytest.raises(ddg.InputError, match="t must be finite real numbers"):
+        ddg.smooth.circle(2.0).curvature(t)
+
+
+def test_a_smooth_curvature_beyond_the_floats_is_refused():
+    with pytest.raises(ddg.OutOfRangeError, match="beyond the largest float"):
+        ddg.smooth.ellipse(1.0, 1e-300).curvature(0.0)
+
+
+@pytest.mark.parametrize("seed", ["a", 1.5, True])
+def test_a_check_refuses_a_seed_that_is_not_a_whole_number(seed):
+    from ddg.checks import check_turning_angles
+
+    with pytest.raises(ddg.InputError, match="seed must be a whole number"):
+        check_turning_angles(lambda vertices: vertices, seed=seed)
