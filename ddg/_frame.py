@@ -80,4 +80,5 @@ class Frame:
             return float(np.ldexp(local_time, 2 * self.exponent))
 
     def local_time(self, t):
-        return float(np.ldexp(t, -2 * self.exponent))
+        with np.errstate(over="ignore"):  # inf: beyond the floats, which flow() refuses
+            return float(np.ldexp(t, -2 * self.exponent))

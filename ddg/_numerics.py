@@ -9,6 +9,7 @@ polygon nearly turns straight back; and how arguments are checked, so that bad i
 import itertools
 import math
 import numbers
+import warnings
 
 import numpy as np
 
@@ -113,7 +114,9 @@ def values(data, name, what="vertex", columns=None):
             "SmoothCurve": ".sample(n) for a DiscreteCurve, then its .vertices", "str": "numbers, not text",
             "bytes": "numbers, not text", "dict": "a list of points"}.get(type(data).__name__)
     try:
-        scalar = np.ndim(data) == 0 and (columns or not isinstance(data, numbers.Real))
+        with warnings.catch_warnings():  # (a masked element: said below)
+            warnings.simplefilter("ignore")
+            scalar = np.ndim(data) == 0 and (columns or not isinstance(data, numbers.Real))
     except ValueError:  # ragged rows: said below
         scalar = False
     if hint or scalar:
@@ -121,8 +124,17 @@ def values(data, name, what="vertex", columns=None):
         raise InputError(f"{name} must be an array of numbers{f' of shape (n, {columns})' if columns else ''}, got "
                          f"{'an' if kind[0] in 'aeiou' else 'a'} {kind}{f': use {hint}' if hint else ''}")
     try:
-        raw = np.asarray(data)
-    except ValueError:  # rows of different lengths
+        with warnings.catch_warnings(record=True) as caught:  # np.ma.masked in a list: numpy warns, makes it NaN
+            warnings.simplefilter("always")
+            raw = np.asarray(data)
+        if any("masked element" in str(w.message) for w in caught):
+            i = int(np.flatnonzero(np.isnan(raw.reshape(len(raw), -1)).any(axis=1))[0])
+            raise InputError(say(i, f"masked value: {_short(data[i])}; drop or fill masked entries first"))
+        if raw.dtype.kind in "USc" and not isinstance(data, np.ndarray):  # a list with text: find which entry
+            raw = np.asarray(data, dtype=object)
+    except ValueError as refused:  # rows of different lengths
+        if isinstance(refused, InputError):
+            raise
         lengths = [np.size(row) if np.ndim(row) else -1 for row in data]
         i = next((i for i, k in enumerate(lengths) if k != (columns or lengths[0])), 0)
         raise InputError(f"{name} must be rows of {columns or lengths[0]} numbers: {what} {i} is {data[i]!r}") from None
@@ -187,13 +199,18 @@ def point(data, name):
 
 
 def frozen(array, dtype=float):
-    """``array`` as an array that cannot be written to, nor made writable again, without a copy.
+    """``array`` as a read-only array, without a copy.
 
-    ``flags.writeable = False`` alone can be undone, and so can a writable ``base``'s; an array
-    over a read-only memory view refuses both (numpy asks the view, which says no).
+    ``flags.writeable = False`` alone can be undone; an array over a read-only memory view refuses
+    ``flags.writeable = True`` on itself and on its base (numpy asks the view, which says no). The
+    memory stays reachable through the view's ``obj`` (itself read-only), for code that goes out of
+    its way: a curve guards against mistakes, not against its own user (the checks' sandbox does).
     """
     array = np.ascontiguousarray(array, dtype=dtype)
-    array.flags.writeable = False
+    base: object = array
+    while isinstance(base, np.ndarray):  # the array and what it is a view of: ddg's own, made read-only
+        base.flags.writeable = False
+        base = base.base
     return np.frombuffer(memoryview(array).toreadonly(), dtype=dtype).reshape(array.shape)
 
 
@@ -247,12 +264,13 @@ def lengths(x, y):
 
 
 def unit(vectors, norms):
-    """``vectors / norms`` row by row, each row first scaled by a power of two (exactly) where a norm
-    lies outside :data:`SAFE`, so that subnormal rows keep every bit they have."""
+    """``vectors / norms`` row by row; where a norm lies outside :data:`SAFE`, each row is first scaled
+    by a power of two (exactly) to at most 1 and divided by its own norm, so that a subnormal row
+    (whose norm has lost bits) still gives a unit vector."""
     if len(norms) and SAFE[0] < norms.min() and norms.max() < SAFE[1]:
         return vectors / norms[:, None]
-    e = np.frexp(norms)[1]
-    return np.ldexp(vectors, -e[:, None]) / np.ldexp(norms, -e)[:, None]
+    scaled = np.ldexp(vectors, -np.frexp(np.abs(vectors).max(axis=1))[1][:, None])
+    return scaled / np.hypot(scaled[:, 0], scaled[:, 1])[:, None]
 
 
 def tan_half_turn(X, Y, L, v, closed):
@@ -315,10 +333,11 @@ def _exact_tan_half_turn(v, at):
     """``tan(psi / 2)`` at the vertices ``at`` of ``v``, its cross product exact (see :func:`tan_half_turn`)."""
     n = len(v)
     p, q, r = v[(at - 1) % n], v[at], v[(at + 1) % n]
-    scale = -np.frexp(np.abs(np.concatenate((p, q, r), axis=1)).max(axis=1))[1][:, None]
-    p, q, r = np.ldexp(p, scale), np.ldexp(q, scale), np.ldexp(r, scale)  # exact: at most 1 in size
     a, da = _two_difference(q, p)  # the edges: a + da = q - p and b + db = r - q exactly
     b, db = _two_difference(r, q)
+    for edge in ((a, da), (b, db)):  # each edge scaled by a power of two to at most 1: no product under-
+        scale = -np.frexp(np.abs(edge[0]).max(axis=1))[1][:, None]  # or overflows (but errors below 2^-1000
+        edge[0][:], edge[1][:] = np.ldexp(edge[0], scale), np.ldexp(edge[1], scale)  # of an edge's size)
     terms = [term for (x, dx), (y, dy), sign in (((a[:, 1], da[:, 1]), (b[:, 0], db[:, 0]), 1.0),
                                                  ((a[:, 0], da[:, 0]), (b[:, 1], db[:, 1]), -1.0))
              for u in (x, dx) for w in (y, dy) for term in _two_product(sign * u, w)]

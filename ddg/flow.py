@@ -304,7 +304,10 @@ class _Run:
             self.records.append((self.t, self.curve.length, self.curve.signed_area, self.curve.turning_number))
             self.next_record = self.t + self.every
         wanted = self.settings.snapshots
-        due = min(wanted, 1 + int(self.t * (1 + 1e-12) / self.span * (wanted - 1))) if wanted > 1 else wanted
+        if wanted > 1 and self.span > 0:
+            due = min(wanted, 1 + int(self.t * (1 + 1e-12) / self.span * (wanted - 1)))
+        else:  # one snapshot, or a run with nothing to span: the first state, then the last
+            due = min(wanted, 1)
         if due > self.next_snapshot:
             self.kept.append((self.t, self.curve))
             self.next_snapshot = due

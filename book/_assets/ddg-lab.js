@@ -93,11 +93,12 @@
    * (Dekker) added without error (exact_sum); then (|a||b| - a . b) / -(a x b). */
   function exact_tan_half_turn(v, at) {
     var n = v.length, p = v[(at - 1 + n) % n], q = v[at], r = v[(at + 1) % n];
-    var big = Math.max(Math.abs(p[0]), Math.abs(p[1]), Math.abs(q[0]), Math.abs(q[1]), Math.abs(r[0]), Math.abs(r[1]));
-    var s = -exponent(big);
-    p = [ldexp(p[0], s), ldexp(p[1], s)]; q = [ldexp(q[0], s), ldexp(q[1], s)]; r = [ldexp(r[0], s), ldexp(r[1], s)];
     var ax = two_difference(q[0], p[0]), ay = two_difference(q[1], p[1]);
     var bx = two_difference(r[0], q[0]), by = two_difference(r[1], q[1]);
+    [[ax, ay], [bx, by]].forEach(function (edge) {  // each edge scaled by a power of two to at most 1
+      var s = -exponent(Math.max(Math.abs(edge[0][0]), Math.abs(edge[1][0])));
+      edge.forEach(function (c) { c[0] = ldexp(c[0], s); c[1] = ldexp(c[1], s); });
+    });
     var terms = [];
     [[ay, bx, 1], [ax, by, -1]].forEach(function (g) {
       g[0].forEach(function (u) { g[1].forEach(function (w) { terms.push.apply(terms, two_product(g[2] * u, w)); }); });
@@ -110,6 +111,14 @@
   }
   function sin_half(t) {  // _numerics.sin_half: sin(psi/2) = t / sqrt(1 + t^2) from t = tan(psi/2); sign(t) past 1e150
     return Math.abs(t) > 1e150 ? Math.sign(t) : t / Math.sqrt(t * t + 1);
+  }
+  function unit(vectors, norms) {  // _numerics.unit: outside SAFE, each row scaled to at most 1 and divided by its own norm
+    var lo = Math.min.apply(null, norms), hi = Math.max.apply(null, norms);
+    if (SAFE[0] < lo && hi < SAFE[1]) return vectors.map(function (p, i) { return [p[0] / norms[i], p[1] / norms[i]]; });
+    return vectors.map(function (p) {
+      var s = -exponent(Math.max(Math.abs(p[0]), Math.abs(p[1]))), x = ldexp(p[0], s), y = ldexp(p[1], s), h = hypot(x, y);
+      return [x / h, y / h];
+    });
   }
   function two_difference(x, y) { var d = x - y, z = d - x; return [d, (x - (d - z)) - (y + z)]; }  // d + e == x - y
   function exact_sum(terms) {  // _numerics.exact_sum: error-free cascades until nothing changes; the last holds the sum
@@ -191,14 +200,14 @@
     this.vertices = v = v.map(function (p) { return [+p[0], +p[1]]; });
     this.edges = v.map(function (p, i) { var q = v[(i + 1) % n]; return [q[0] - p[0], q[1] - p[1]]; });  // e_{i+1/2} = v_{i+1} - v_i
     var l = this.edge_lengths = lengths(this.edges);                             // |e_{i+1/2}|
-    var far = l.findIndex(function (x) { return !isFinite(x); });
-    if (far >= 0) fail("the edge from vertex " + far + " to vertex " + (far + 1) % n + " is longer than the largest float (about 1.8e308): scale the curve down");
-    var i = l.indexOf(0);
+    var i = l.indexOf(0);  // ddg's order: equal vertices first, then an edge or a length beyond the floats
     if (i === n - 1) fail("the last vertex " + i + " repeats the first vertex 0 (" + v[0] + "); a closed curve's closing edge is implied, so leave the repeated vertex out");
     if (i >= 0) fail("vertices " + i + " and " + (i + 1) + " are equal (" + v[i] + ", as floats); consecutive vertices must differ");
+    var far = l.findIndex(function (x) { return !isFinite(x); });
+    if (far >= 0) fail("the edge from vertex " + far + " to vertex " + (far + 1) % n + " is longer than the largest float (about 1.8e308): scale the curve down");
     this.length = sum(l);                                                        // L = sum_i |e_{i+1/2}| (§3)
     if (!isFinite(this.length)) fail("the curve's length is beyond the largest float (about 1.8e308): scale it down");
-    this.tangents = this.edges.map(function (e, i) { return [e[0] / l[i], e[1] / l[i]]; });  // T = e / |e|
+    this.tangents = unit(this.edges, l);                                         // T = e / |e|
     this.normals = J(this.tangents);                                             // N_{i+1/2} = J T_{i+1/2}
     this.tan_half_psi = tan_half_turn(previous(this.edges), this.edges, previous(l), l, v, 0);  // tan(psi_i / 2)
     this.reversals = [];
@@ -211,7 +220,7 @@
   function getter(name, f) { Object.defineProperty(C, name, {get: f}); }
 
   getter("turning_number", function () {  // sum_i psi_i / (2 pi) (§3.2), undefined where psi = pi
-    if (this.reversals.length) fail("the turning number is not defined: the curve turns straight back at vertex " + this.reversals[0] + " (its two edges, as computed, point in exactly opposite directions), where a turn of +pi and one of -pi are equally right");
+    if (this.reversals.length) fail("the turning number is not defined: the curve turns straight back at vertex " + this.reversals[0] + " (its two edges point in exactly opposite directions), where a turn of +pi and one of -pi are equally right");
     return Math.round(sum(this.turning_angles) / (2 * Math.PI));
   });
   getter("signed_area", function () {  // -1/2 sum_i v_i x v_{i+1}, positive for a clockwise curve

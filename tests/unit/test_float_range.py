@@ -224,7 +224,7 @@ def test_a_flow_far_from_the_origin_is_the_run_at_the_origin_translated(offset, 
 
 
 @pytest.mark.parametrize(("make", "hint"), [
-    (lambda: zip([0, 1, 2], [0, 1, 0]), "list(zip(...))"), (lambda: (p for p in [[0, 0], [1, 1], [1, 0]]), "list(...)"),
+    (lambda: zip([0, 1, 2], [0, 1, 0], strict=True), "list(zip(...))"), (lambda: (p for p in [[0, 0], [1, 1], [1, 0]]), "list(...)"),
     (lambda: ddg.regular_polygon(4), "its .vertices"), (lambda: ddg.smooth.circle(), ".sample(n)"),
     (lambda: "abc", "not text"), (lambda: b"ab", "not text"), (lambda: 5.0, "got a float"), (lambda: None, "NoneType"),
 ])
@@ -264,3 +264,48 @@ def test_a_check_refuses_a_seed_that_is_not_a_whole_number(seed):
 
     with pytest.raises(ddg.InputError, match="seed must be a whole number"):
         check_turning_angles(lambda vertices: vertices, seed=seed)
+
+
+# ------------------------------------------------------------ what a reviewer found (a helper, December 2026)
+
+
+@pytest.mark.parametrize("d", [1e-170, 1e-160, 1e-200, 2.0**-1000])
+def test_a_tiny_edge_beside_a_unit_edge_turns_exactly(d):
+    """The exact cross product scales each edge on its own: scaled together, d * d underflowed to 0
+    and the turn at vertex 1 was called a reversal."""
+    v = np.array([[d, 0.0], [0.0, 0.0], [1.0, d], [0.5, 3.0]])
+    c = ddg.DiscreteCurve(v)
+    _, t, _, _ = reference(v)
+    assert len(c.reversals) == 0 and c.turning_number == 0
+    assert close(c.tan_half_psi[1], t[1], 1e-15)
+
+
+def test_a_subnormal_edge_has_unit_tangents_and_normals():
+    c = ddg.DiscreteCurve([[0.0, 0.0], [5e-324, 0.0], [5e-324, 5e-324]])
+    np.testing.assert_allclose(np.linalg.norm(c.tangents, axis=1), 1.0, rtol=1e-15)
+    np.testing.assert_allclose(np.linalg.norm(c.bisector_normals, axis=1), 1.0, rtol=1e-15)
+
+
+def test_a_run_too_short_to_take_a_step_ends_with_its_first_state():
+    run = flow(ddg.DiscreteCurve(ddg.regular_polygon(12).vertices * 1e100), "sine", 1e-300, progress=False)
+    assert run.stopped == "reached t_end" and len(run.snapshots) >= 1
+
+
+@pytest.mark.parametrize(("vertices", "said"), [
+    ([[0, 0], [1, 0], ["1", 0]], "vertex 2 has a coordinate that is not a real number"),
+    ([[0, 0], [1, 0], [1j, 0]], "vertex 2 has a coordinate that is not a real number"),
+    ([[0, 0], [np.ma.masked, 1], [1, 1], [1, 0]], "vertex 1 has a masked coordinate"),
+])
+def test_text_and_masked_entries_in_a_list_are_named_where_they_are(vertices, said):
+    with pytest.raises(ddg.InputError, match=said):
+        ddg.DiscreteCurve(vertices)
+
+
+def test_no_array_behind_a_curves_lengths_is_writable():
+    c = ddg.DiscreteCurve([[0, 0], [0, 1], [1, 1], [1, 0]])
+    for array in (c.edge_lengths, c.dual_lengths, c.vertices, c.tan_half_psi):
+        base = array
+        while base is not None:
+            if isinstance(base, np.ndarray):
+                assert not base.flags.writeable
+            base = getattr(base, "base", None) if not isinstance(base, memoryview) else base.obj
