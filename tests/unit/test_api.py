@@ -7,6 +7,7 @@ functions, classes, their methods and properties.
 
 import ast
 import doctest
+import functools
 import importlib
 import inspect
 import pathlib
@@ -42,6 +43,17 @@ def public(module):
                     yield f"{name}.{attr}", function
 
 
+def cached_property_examples(module, globs):
+    """The examples of ``functools.cached_property`` docstrings, which doctest's finder skips."""
+    parser, tests = doctest.DocTestParser(), []
+    for cls in (obj for obj in vars(module).values() if inspect.isclass(obj) and obj.__module__ == module.__name__):
+        for attr, member in vars(cls).items():
+            if isinstance(member, functools.cached_property) and member.__doc__:
+                name = f"{module.__name__}.{cls.__name__}.{attr}"
+                tests.append(parser.get_doctest(member.__doc__, dict(globs), name, module.__file__, 0))
+    return [test for test in tests if test.examples]
+
+
 def every_module():
     return [info.name for info in pkgutil.walk_packages([str(ROOT)], "ddg.")]
 
@@ -60,7 +72,8 @@ def test_the_examples_run(module):
     ``import numpy as np`` and ``from ddg.<module> import *`` (what ddg/__init__.py says)."""
     imported = importlib.import_module(module)
     names = getattr(imported, "__all__", [name for name in vars(imported) if not name.startswith("_")])
-    found = doctest.DocTestFinder().find(imported, globs={"np": np, **{name: getattr(imported, name) for name in names}})
+    globs = {"np": np, **{name: getattr(imported, name) for name in names}}
+    found = doctest.DocTestFinder().find(imported, globs=globs) + cached_property_examples(imported, globs)
     runner = doctest.DocTestRunner(optionflags=OPTIONS)
     with np.errstate(all="raise"):
         for test in found:
@@ -75,7 +88,9 @@ def test_the_example_test_finds_examples_and_fails_a_wrong_one():
     runner = doctest.DocTestRunner(optionflags=OPTIONS)
     runner.run(test, out=lambda text: None)
     assert runner.summarize(verbose=False).failed == 1
-    assert sum(len(doctest.DocTestFinder().find(importlib.import_module(m))) for m in CORE) > 60
+    modules = [importlib.import_module(m) for m in CORE]
+    assert sum(len(doctest.DocTestFinder().find(m)) for m in modules) > 60
+    assert len(cached_property_examples(importlib.import_module("ddg.curve"), {})) >= 12  # edges, lengths, ...
 
 
 @pytest.mark.parametrize("module", CORE)
