@@ -4,7 +4,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _numerics as nx
+from . import _arguments as check
 from .curve import CURVATURES, DiscreteCurve
 from .errors import DegenerateCurveError, InputError
 
@@ -31,19 +31,19 @@ class Settings:
     progress: bool
 
     def __post_init__(self):
-        nx.choose(self.kind, CURVATURES, "curvature kind")
-        nx.choose(self.method, METHODS, "method")
+        check.choose(self.kind, CURVATURES, "curvature kind")
+        check.choose(self.method, METHODS, "method")
         for name in ("t_end", "dt", "safety", "lifetime_fraction", "record_every", "max_seconds"):
             if getattr(self, name) is not None or name not in ("dt", "record_every"):
-                nx.real(getattr(self, name), name, 0.0, strict=True)
+                check.real(getattr(self, name), name, 0.0, strict=True)
         for name in ("stop_length_fraction", "stop_edge_fraction"):
-            if nx.real(getattr(self, name), name, 0.0) >= 1:
+            if check.real(getattr(self, name), name, 0.0) >= 1:
                 raise InputError(f"{name} must be a fraction in [0, 1), got {getattr(self, name)!r}")
-        nx.count(self.snapshots, "snapshots", 0)
-        nx.count(self.max_steps, "max_steps", 1)
+        check.count(self.snapshots, "snapshots", 0)
+        check.count(self.max_steps, "max_steps", 1)
         if self.remesh_every is not None:
-            nx.count(self.remesh_every, "remesh_every", 1)
-        nx.flag(self.progress, "progress")
+            check.count(self.remesh_every, "remesh_every", 1)
+        check.flag(self.progress, "progress")
 
 
 class Frame:

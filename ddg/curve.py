@@ -20,6 +20,7 @@ from functools import cached_property
 import numpy as np
 import numpy.typing as npt
 
+from . import _arguments as check
 from . import _numerics as nx
 from .errors import DegenerateCurveError, InputError, OpenCurveError, OutOfRangeError
 
@@ -62,21 +63,10 @@ class DiscreteCurve:
     """
 
     def __init__(self, vertices: npt.ArrayLike, closed: bool = True) -> None:
-        self._closed = nx.flag(closed, "closed")
-        v = nx.enough(nx.points(vertices, "vertex"), self._closed)
+        self._closed = check.flag(closed, "closed")
+        v = check.enough(check.points(vertices, "vertex"), self._closed)
         self._v = nx.frozen(v)
-        lengths = self.edge_lengths
-        if lengths.min() == 0.0:
-            i = int(np.argmin(lengths))
-            if self._closed and i == len(v) - 1:
-                raise DegenerateCurveError(f"the last vertex {i} repeats the first vertex 0 ({v[0]}); a closed curve's "
-                                           "closing edge is implied, so leave the repeated vertex out")
-            raise DegenerateCurveError(f"vertices {i} and {i + 1} are equal ({v[i]}, as floats); consecutive vertices "
-                                       "must differ")
-        if not np.isfinite(self.length):  # an edge, or only their sum
-            nx.require_finite(lengths, lambda i: f"the edge from vertex {i} to vertex {(i + 1) % len(v)} is longer "
-                              "than the largest float (about 1.8e308): scale the curve down", OutOfRangeError)
-            raise OutOfRangeError("the curve's length is beyond the largest float (about 1.8e308): scale it down")
+        check.edges(v, self.edge_lengths, self.length, self._closed)  # no two equal neighbours, no overflow
 
     def __len__(self) -> int:
         return len(self._v)
@@ -108,9 +98,6 @@ class DiscreteCurve:
     def _require_closed(self, what: str) -> None:  # an OpenCurveError for what needs a closed curve
         if not self.closed:
             raise OpenCurveError(f"{what} is defined for closed curves only; this curve is open")
-
-    def _at_vertices(self, values: Array) -> tuple[Array, Array]:  # (previous, next) edges where psi is defined
-        return (nx.previous(values), values) if self.closed else (values[:-1], values[1:])
 
     # ------------------------------------------------------------------ edges (lecture §3)
 
@@ -246,7 +233,8 @@ class DiscreteCurve:
         >>> DiscreteCurve([[0, 0], [0, 1], [1, 1], [1, 0]]).bisector_normals[1] * np.sqrt(2)
         array([-1.,  1.])
         """
-        (N_prev, _), (T_prev, _) = self._at_vertices(self.normals), self._at_vertices(self.tangents)
+        N, T = self.normals, self.tangents  # N_{i-1/2}, T_{i-1/2} at each vertex where psi is defined
+        N_prev, T_prev = (nx.previous(N), nx.previous(T)) if self.closed else (N[:-1], T[:-1])
         t = self.tan_half_psi  # cos(psi/2) and sin(psi/2) from tan(psi/2), accurate near psi = pi
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             cos, sin = 1 / np.hypot(1, t), np.sign(t) / np.hypot(1, 1 / t)
@@ -302,7 +290,7 @@ class DiscreteCurve:
         >>> square.inner(np.ones(4), np.ones(4))           # <1, 1> = L
         4.0
         """
-        f, g = nx.discrete_function(F, len(self), "F"), nx.discrete_function(G, len(self), "G")
+        f, g = check.discrete_function(F, len(self), "F"), check.discrete_function(G, len(self), "G")
         if f.shape != g.shape:
             raise InputError(f"F and G must both be scalar or both vector: shapes {f.shape}, {g.shape}")
         with np.errstate(over="ignore", invalid="ignore"):
@@ -334,7 +322,7 @@ class DiscreteCurve:
         >>> square.curvature("angle") / np.pi, square.curvature("tangent")
         (array([0.5, 0.5, 0.5, 0.5]), array([2., 2., 2., 2.]))
         """
-        nx.choose(kind, CURVATURES, "curvature kind")
+        check.choose(kind, CURVATURES, "curvature kind")
         cache = self.__dict__.setdefault("_curvatures", {})
         if kind not in cache:
             with np.errstate(over="ignore", invalid="ignore", under="ignore", divide="ignore"):
@@ -352,9 +340,9 @@ class DiscreteCurve:
                 raise DegenerateCurveError(f"the tangent curvature (eq. 4) diverges at vertex {self.reversals[0]}: the "
                                            "curve turns straight back there (psi = pi)")
             first = 0 if self.closed else 1
-            nx.require_finite(k, lambda j: f"the {kind} curvature at vertex {j + first} is beyond the largest float "
-                              f"(a turn of {np.degrees(self.turning_angles[j]):.6g} degrees between edges "
-                              f"{self._A[j]:.3g} long on average)", OutOfRangeError)
+            check.require_finite(k, lambda j: f"the {kind} curvature at vertex {j + first} is beyond the largest float "
+                                 f"(a turn of {np.degrees(self.turning_angles[j]):.6g} degrees between edges "
+                                 f"{self._A[j]:.3g} long on average)", OutOfRangeError)
             cache[kind] = nx.frozen(k)
         return cache[kind]
 
@@ -366,7 +354,7 @@ class DiscreteCurve:
         >>> round(DiscreteCurve([[0, 0], [0, 1], [1, 1], [1, 0]]).total_curvature() / np.pi, 12)
         2.0
         """
-        nx.choose(kind, CURVATURES, "curvature kind")
+        check.choose(kind, CURVATURES, "curvature kind")
         self.curvature(kind)  # its refusals
         if kind == "angle":
             return float(self.turning_angles.sum())
@@ -396,8 +384,8 @@ class DiscreteCurve:
             g = np.concatenate((np.zeros((1, 2)), T)) - np.concatenate((T, np.zeros((1, 2))))
         with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
             g /= self.dual_lengths[:, None]
-        nx.require_finite(g, lambda j: f"the gradient of length at vertex {j} is beyond the largest float "
-                          f"(its edges are {self.dual_lengths[j]:.3g} long on average)", OutOfRangeError)
+        check.require_finite(g, lambda j: f"the gradient of length at vertex {j} is beyond the largest float "
+                             f"(its edges are {self.dual_lengths[j]:.3g} long on average)", OutOfRangeError)
         return g  # a new array at every call: yours to change
 
     def laplacian(self, F: npt.ArrayLike) -> Array:
@@ -415,13 +403,13 @@ class DiscreteCurve:
         array([ 0.,  1., -2.,  1.])
         """
         self._require_closed("the Laplacian")
-        f = nx.discrete_function(F, len(self), "F")
+        f = check.discrete_function(F, len(self), "F")
         shape = (-1,) if f.ndim == 1 else (-1, 1)
         with np.errstate(over="ignore", invalid="ignore"):
             flux = (np.concatenate((f[1:], f[:1])) - f) / self.edge_lengths.reshape(shape)  # (F_{i+1} - F_i) / |e|
             lap = (flux - nx.previous(flux)) / self.dual_lengths.reshape(shape)
-        nx.require_finite(lap, lambda j: f"the Laplacian at vertex {j} is beyond the largest float: scale F down "
-                          "or the curve up", OutOfRangeError)
+        check.require_finite(lap, lambda j: f"the Laplacian at vertex {j} is beyond the largest float: scale F down "
+                             "or the curve up", OutOfRangeError)
         return lap  # a new array at every call: yours to change
 
     # -------------------------------------------------------------- inflation (lecture §3.4)

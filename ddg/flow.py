@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import _arguments as check
 from . import _numerics as nx
 from ._linalg import solve_cyclic_tridiagonal
 from .curve import Array, DiscreteCurve
@@ -122,7 +123,7 @@ def stable_step(curve: DiscreteCurve, kind: str, safety: float = 0.25) -> float:
     >>> round(stable_step(regular_polygon(4), "sine"), 12)     # 0.25 min(h A / 2, h / k): h = A = sqrt 2, k = 1
     0.25
     """
-    safety = nx.real(safety, "safety", 0.0, strict=True)
+    safety = check.real(safety, "safety", 0.0, strict=True)
     diffusion = np.min(_shorter_edges(curve) * curve.dual_lengths / (2 * speed_factor(curve, kind)))
     return float(safety * min(diffusion, _travel_step(curve, kind)))
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from . import _arguments as check
 from . import _numerics as nx
 from .curve import INFLATIONS, DiscreteCurve
 from .errors import DegenerateCurveError, InputError, OpenCurveError, OutOfRangeError
@@ -23,10 +24,10 @@ MAX_ARC_POINTS = 1_000_000
 
 def _checked(curve: DiscreteCurve, eps: float, method: str) -> float:
     """Check the arguments of an inflation; ``eps`` as a float."""
-    nx.choose(method, INFLATIONS, "inflation method")
+    check.choose(method, INFLATIONS, "inflation method")
     if not curve.closed:
         raise OpenCurveError("inflation is defined for closed curves only; this curve is open")
-    eps = nx.real(eps, "eps")
+    eps = check.real(eps, "eps")
     if eps < 0:
         raise InputError(f"eps must be >= 0, got {eps!r}: erosion is not supported (the lecture's formulas hold "
                          "only until an edge collapses); inflating the reversed curve moves the edges the other way")
@@ -125,7 +126,7 @@ def _boundary(points, vertex, eps):
     Repeated points (an arc of zero angle, a step below rounding) are dropped; errors name the
     vertex of the input curve.
     """
-    nx.require_finite(points, lambda j: f"inflating by eps = {eps:g} overflows at vertex {vertex[j]}", OutOfRangeError)
+    check.require_finite(points, lambda j: f"inflating by eps = {eps:g} overflows at vertex {vertex[j]}", OutOfRangeError)
     keep = (points != nx.previous(points)).any(axis=1)
     if keep.sum() < 3:
         raise DegenerateCurveError(f"the boundary inflated by eps = {eps:g} collapses to fewer than 3 points")

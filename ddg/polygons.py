@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from . import _numerics as nx
+from . import _arguments as check
 from .curve import DiscreteCurve
 from .errors import InputError, OutOfRangeError
 
@@ -36,13 +36,13 @@ def regular_polygon(n: int, radius: float = 1.0, clockwise: bool = True,
         raise InputError(f"a regular polygon needs an integer n >= 3, got {n!r}")
     if int(n) > np.iinfo(np.intp).max // 16:
         raise OutOfRangeError(f"n = {n} vertices cannot be stored: the array would need {16 * int(n):.3g} bytes")
-    radius = nx.real(radius, "radius", 0.0, strict=True)
-    clockwise = nx.flag(clockwise, "clockwise")
-    c = nx.point(center, "center")
+    radius = check.real(radius, "radius", 0.0, strict=True)
+    clockwise = check.flag(clockwise, "clockwise")
+    c = check.point(center, "center")
     theta = (2 * np.pi / int(n)) * np.arange(int(n))
     vertices = np.stack([np.cos(theta), (-1.0 if clockwise else 1.0) * np.sin(theta)], axis=1)
     with np.errstate(over="ignore"):
         vertices = radius * vertices + c
-    nx.require_finite(vertices, lambda i: f"vertex {i} of a regular polygon of radius {radius:g} about {c} is "
-                      "beyond the largest float", OutOfRangeError)
+    check.require_finite(vertices, lambda i: f"vertex {i} of a regular polygon of radius {radius:g} about {c} is "
+                         "beyond the largest float", OutOfRangeError)
     return DiscreteCurve(vertices)

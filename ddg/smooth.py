@@ -16,79 +16,13 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from . import _numerics as nx
+from . import _arguments as check
 from .curve import Array, DiscreteCurve
+from ._quadrature import RTOL, adaptive, gauss  # noqa: F401 (RTOL: the accuracy the docstrings cite)
 from .errors import InputError, OutOfRangeError
 
 Function = Callable[[Any], Any]
 """A plane-curve callable: ``t -> (x, y)``, vectorized over arrays of ``t``."""
-
-# Gauss-Legendre rule on [0, 1], 8 nodes: exact for polynomials of degree 15.
-_GL_X, _GL_W = np.polynomial.legendre.leggauss(8)
-_GL_X, _GL_W = (_GL_X + 1) / 2, _GL_W / 2
-
-RTOL = 1e-13
-"""Relative accuracy the adaptive quadrature behind arc length and total curvature aims at. Its error
-estimate can be fooled by chance near a narrow feature: on 1500 ellipses with b / a from 1 to 1e-6
-the worst length was 4e-13 off (relative)."""
-
-_EPS = np.finfo(float).eps
-
-
-def _gauss(f, a, b):
-    """``int_a^b f`` and ``int_a^b |f|`` on each cell ``[a_j, b_j]`` by the 8-node Gauss rule."""
-    values = f(a[..., None] + (b - a)[..., None] * _GL_X)
-    return (b - a) * (values @ _GL_W), (b - a) * (np.abs(values) @ _GL_W)
-
-
-def _adaptive(f, t0, t1, cells=1024, max_levels=60, max_cells=10**5):
-    """Cells ``(a, b)``, sorted, and ``int f`` on each, to a relative accuracy :data:`RTOL`.
-
-    Adaptive Gauss quadrature, vectorized over cells. Every cell is integrated whole and as two
-    halves; their difference estimates the error of the whole. A cell is done when that error is
-    below its share (its width over ``t1 - t0``) of ``RTOL * int |f|``, or at the level of rounding
-    in its own ``int |f|``, and its halves' sum is kept;
-    all other cells are halved at once and examined again. Narrow features (a thin ellipse's tips)
-    get small cells, smooth stretches stay coarse. Once the errors left sum to less than
-    ``RTOL * int |f|`` (a kink or a jump in ``f``) every cell is done. If that takes more than
-    ``max_levels`` halvings or ``max_cells`` cells, or cells narrower than the rounding of ``t``
-    allows, or ``f`` is not finite, ``ValueError`` says where.
-    """
-    a = np.linspace(t0, t1, cells + 1)
-    a, b = a[:-1], a[1:]
-    why = f"it needs more than {max_levels} halvings"
-    whole, _ = _gauss(f, a, b)
-    done, done_abs = [], 0.0
-    for _ in range(max_levels):
-        m = (a + b) / 2
-        (left, left_abs), (right, right_abs) = _gauss(f, a, m), _gauss(f, m, b)
-        if not np.isfinite(left_abs + right_abs).all():
-            worst = a[~np.isfinite(left_abs + right_abs)][0]
-            why = "the integrand is not finite there (is the curve regular, |gamma'| > 0?)"
-            break
-        error, tolerance = np.abs(whole - left - right), RTOL * (done_abs + np.sum(left_abs + right_abs))
-        ok = error <= np.maximum(tolerance * (b - a) / (t1 - t0), 64 * _EPS * (left_abs + right_abs))  # or rounding
-        if np.sum(error[~ok]) <= tolerance:
-            ok[:] = True
-        done.append((a[ok], b[ok], (left + right)[ok]))
-        done_abs += np.sum((left_abs + right_abs)[ok])
-        if ok.all():
-            a, b, I = (np.concatenate(parts) for parts in zip(*done, strict=True))
-            order = np.argsort(a)
-            return a[order], b[order], I[order]
-        worst = a[~ok][np.argmax(error[~ok])]
-        a, m, b = a[~ok], m[~ok], b[~ok]
-        why = (f"it needs more than {max_cells} cells: the integrand has a feature too narrow or too steep there "
-               "(the tip of a very eccentric ellipse, say), or a kink")
-        if len(a) > max_cells / 2:
-            break
-        if np.any(b - a < 1024 * np.spacing(np.maximum(abs(a), abs(b)))):
-            why = ("the integrand changes on a scale finer than the rounding of the parameter t allows (as at "
-                   "the tip of a very eccentric ellipse); parametrize the curve so that t moves faster there")
-            break
-        a, b, whole = np.concatenate([a, m]), np.concatenate([m, b]), np.concatenate([left[~ok], right[~ok]])
-    raise OutOfRangeError(f"the quadrature did not converge near t = {worst:.6g}: {why}")
-
 
 def _points(f, t):
     """Evaluate a plane-curve callable at ``t`` (scalar or array) as an array of shape ``t.shape + (2,)``.
@@ -131,10 +65,10 @@ class SmoothCurve:
 
     def __init__(self, position: Function, velocity: Function, acceleration: Function, t0: float = 0.0,
                  t1: float = 2 * np.pi, closed: bool = True, name: str = "curve") -> None:
-        t0, t1 = nx.real(t0, "t0"), nx.real(t1, "t1")
+        t0, t1 = check.real(t0, "t0"), check.real(t1, "t1")
         if not t1 > t0:
             raise InputError(f"need t1 > t0, got t0={t0!r}, t1={t1!r}")
-        closed = nx.flag(closed, "closed")
+        closed = check.flag(closed, "closed")
         self.gamma, self.dgamma, self.ddgamma = position, velocity, acceleration  # the callables given
         self.t0, self.t1, self.closed, self.name = float(t0), float(t1), bool(closed), name
 
@@ -161,7 +95,7 @@ class SmoothCurve:
         M = np.asarray(matrix, dtype=float)
         if M.shape != (2, 2) or not np.isfinite(M).all():
             raise InputError(f"matrix must be a finite 2 x 2 matrix, got {matrix!r}")
-        b = _point(shift, "shift")
+        b = check.point(shift, "shift")
 
         def mapped(f, offset):
             def g(t):
@@ -247,12 +181,12 @@ class SmoothCurve:
 
     @cached_property
     def _grid(self):
-        """Cell boundaries in ``t`` (adaptive, see ``_adaptive``) and the arc length up to each."""
-        a, b, integrals = _adaptive(self.speed, self.t0, self.t1)
+        """Cell boundaries in ``t`` (adaptive, see ``ddg._quadrature.adaptive``) and the arc length up to each."""
+        a, b, integrals = adaptive(self.speed, self.t0, self.t1)
         return np.append(a, b[-1]), np.concatenate([[0.0], np.cumsum(integrals)])
 
     def _integrate_speed(self, a, b):
-        return _gauss(self.speed, a, b)[0]
+        return gauss(self.speed, a, b)[0]
 
     def arc_length(self, t: npt.ArrayLike) -> Array:
         """``s(t) = int_{t0}^{t} |gamma'|``: arc length from the start to parameter ``t`` in ``[t0, t1]``.
@@ -307,7 +241,7 @@ class SmoothCurve:
         >>> round(ellipse(3.0, 1.0).total_curvature() / np.pi, 12)
         2.0
         """
-        _, _, integrals = _adaptive(lambda t: self.curvature(t) * self.speed(t), self.t0, self.t1)
+        _, _, integrals = adaptive(lambda t: self.curvature(t) * self.speed(t), self.t0, self.t1)
         return float(integrals.sum())
 
     # ------------------------------------------------------------------------ sampling
@@ -345,7 +279,7 @@ def circle(radius: float = 1.0, center: npt.ArrayLike = (0.0, 0.0), clockwise: b
     >>> circle(2.0).curvature(0.3), circle(2.0, clockwise=False).curvature(0.3)
     (np.float64(0.5), np.float64(-0.5))
     """
-    radius = nx.real(radius, "radius", 0.0, strict=True)
+    radius = check.real(radius, "radius", 0.0, strict=True)
     return ellipse(radius, radius, center, clockwise, name=f"circle r={radius:g}")
 
 
@@ -359,23 +293,18 @@ def ellipse(a: float = 2.0, b: float = 1.0, center: npt.ArrayLike = (0.0, 0.0), 
     >>> round(ellipse(2.0, 2.0).length / np.pi, 12)
     4.0
     """
-    a, b = nx.real(a, "a", 0.0, strict=True), nx.real(b, "b", 0.0, strict=True)
+    a, b = check.real(a, "a", 0.0, strict=True), check.real(b, "b", 0.0, strict=True)
     if max(a, b) > np.finfo(float).max / 8:
         raise OutOfRangeError(f"an ellipse with semi-axes {a:g} and {b:g} has a length beyond the largest float "
                               "(about 1.8e308): scale it down")
-    cx, cy = _point(center, "center")
-    s = -1.0 if nx.flag(clockwise, "clockwise") else 1.0
+    cx, cy = check.point(center, "center")
+    s = -1.0 if check.flag(clockwise, "clockwise") else 1.0
     return SmoothCurve(
         lambda t: (cx + a * np.cos(t), cy + s * b * np.sin(t)),
         lambda t: (-a * np.sin(t), s * b * np.cos(t)),
         lambda t: (-a * np.cos(t), -s * b * np.sin(t)),
         name=name or f"ellipse a={a:g}, b={b:g}",
     )
-
-
-def _point(value, name):
-    """``value`` as a finite point ``(x, y)``, or an ``InputError``."""
-    return nx.point(value, name)
 
 
 def parametric(position: Function, velocity: Function, acceleration: Function, t0: float = 0.0,
@@ -416,9 +345,9 @@ def from_curvature(kappa: Function, length: float, samples: int = 20001, start: 
     >>> bool(np.abs(points[-1] - points[0]).max() < 1e-6)
     True
     """
-    length = nx.real(length, "length", 0.0, strict=True)
-    samples = nx.count(samples, "samples", 2)
-    p0, direction = _point(start, "start"), nx.real(direction, "direction")
+    length = check.real(length, "length", 0.0, strict=True)
+    samples = check.count(samples, "samples", 2)
+    p0, direction = check.point(start, "start"), check.real(direction, "direction")
     s = np.linspace(0.0, length, samples)
     k = np.broadcast_to(np.asarray(kappa(s), dtype=float), s.shape)
     if not np.isfinite(k).all():
@@ -437,7 +366,7 @@ def polar(r: Function, dr: Function, ddr: Function, clockwise: bool = True, name
     >>> round(float(polar(lambda t: 2 + 0 * t, lambda t: 0 * t, lambda t: 0 * t).curvature(1.0)), 12)
     0.5
     """
-    sign = -1.0 if nx.flag(clockwise, "clockwise") else 1.0
+    sign = -1.0 if check.flag(clockwise, "clockwise") else 1.0
     c, s = np.cos, np.sin
     return SmoothCurve(
         lambda t: (r(t) * c(t), sign * r(t) * s(t)),
@@ -455,6 +384,6 @@ def flower(amplitude: float, petals: int, clockwise: bool = True, name: str | No
     >>> bool((flower(0.3, 5).sample(200).curvature() < 0).any())        # 0.3 > 1/26: non-convex
     True
     """
-    c, k = nx.real(amplitude, "amplitude"), nx.count(petals, "petals", 1)
+    c, k = check.real(amplitude, "amplitude"), check.count(petals, "petals", 1)
     return polar(lambda t: 1 + c * np.cos(k * t), lambda t: -c * k * np.sin(k * t),
                  lambda t: -c * k * k * np.cos(k * t), clockwise, name or f"r = 1 + {c:g} cos {k}t")

@@ -115,7 +115,7 @@ def test_mypy_accepts_the_type_hints():
     assert done.returncode == 0, done.stdout + done.stderr
 
 
-@pytest.mark.parametrize("module", ["ddg/_numerics.py", *(m.replace(".", "/") + ".py" for m in CORE)])
+@pytest.mark.parametrize("module", ["ddg/_numerics.py", "ddg/_arguments.py", *(m.replace(".", "/") + ".py" for m in CORE)])
 def test_refusals_are_errors_by_kind(module):
     """No bare ValueError: each refusal is one of ddg.errors, so a caller can catch it by kind."""
     tree = ast.parse((ROOT.parent / module).read_text())
