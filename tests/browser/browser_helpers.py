@@ -130,6 +130,9 @@ class Visit:
         self.page.set_viewport_size({"width": width, "height": 900})
         self.page.evaluate("() => new Promise(r => requestAnimationFrame(() => requestAnimationFrame(r)))")
         self.page.wait_for_timeout(100)
+        # the theme's buttons fade their colours over 0.15 s: on a busy machine axe judged a search
+        # button half-way to dark (CI, stop 39), so colours are read once every fade has ended
+        self.page.wait_for_function(PROBES["NO_TRANSITION"])
 
     @staticmethod
     def _icon_dropped(request):

@@ -105,6 +105,9 @@ async waitingSource => {  // WAITING below, as text
         return box.width > 0 && box.height > 0 && getComputedStyle(e).visibility !== "hidden";
     })).length
 
+//# NO_TRANSITION
+() => document.getAnimations().every(a => !(a instanceof CSSTransition) || a.playState !== 'running')
+
 //# NOTHING_MOVES
 () => document.getAnimations().every(a => a.playState !== 'running')
 
