@@ -135,6 +135,7 @@ def axe_violations(visit, options):
     visit.ignoring = True  # axe's own requests are not the page's
     try:
         page = visit.page
+        page.wait_for_function(PROBES["NO_TRANSITION"])  # colours mid-fade are neither theme's
         page.evaluate(CONTRAST_SAMPLE)
         if not page.evaluate("() => typeof axe !== 'undefined'"):
             page.evaluate(AXE_SOURCE)
