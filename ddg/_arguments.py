@@ -78,12 +78,13 @@ def _short(x):
     return text if len(text) <= 60 else f"{text[:24]}...{text[-8:]} ({len(text)} characters)"
 
 
-def values(data, name, what="vertex", columns=None):
+def values(data, name, what="vertex", columns=None, finite=True):
     """``data`` as a new float array, or an ``InputError`` naming the row at fault (``what`` and its index).
 
     Refused: text (even text that reads as a number), complex numbers and booleans; rows of
     different lengths; masked entries; NaN and infinities; and numbers beyond the largest float
     (``OutOfRangeError``). ``columns`` is the length every row must have (``None``: any).
+    ``finite=False`` leaves NaN and infinities given as floats to the caller (:func:`edges`).
     """
     def say(i, problem):
         if name == "vertices":
@@ -141,6 +142,8 @@ def values(data, name, what="vertex", columns=None):
     if columns and (v.ndim != 2 or v.shape[1] != columns):
         raise InputError(f"{name} must have shape (n, {columns}), got shape {v.shape}")
 
+    if not finite and raw.dtype.kind == "f" and raw.itemsize <= 8:  # converted exactly: the caller checks
+        return v
     with np.errstate(over="ignore", invalid="ignore"):
         if not np.isfinite(np.add.reduce(v, axis=None)):
             finite = np.isfinite(v)
@@ -164,9 +167,9 @@ def discrete_function(F, n, name):
     return F
 
 
-def points(data, what):
+def points(data, what, finite=True):
     """``data`` as a new float array of shape ``(n, 2)``, checked as :func:`values` checks."""
-    return values(data, "vertices", what, columns=2)
+    return values(data, "vertices", what, columns=2, finite=finite)
 
 
 def enough(v, closed):
@@ -177,9 +180,13 @@ def enough(v, closed):
     return v
 
 
-def edges(v, lengths, length, closed):
-    """Refuse a curve with two equal consecutive vertices (``DegenerateCurveError``), or whose edge or
-    length is beyond the largest float (``OutOfRangeError``), naming the vertex."""
+def edges(v, lengths, length, closed, ok):
+    """Refuse a curve with a NaN or infinite coordinate (``InputError``), two equal consecutive
+    vertices (``DegenerateCurveError``), or an edge or length beyond the largest float
+    (``OutOfRangeError``), naming the vertex. ``ok``: every edge length is positive and finite."""
+    if ok and np.isfinite(length):
+        return
+    require_finite(v, lambda i: f"vertex {i} has a NaN or infinite coordinate: {v[i]}")
     if lengths.min() == 0.0:
         i = int(np.argmin(lengths))
         if closed and i == len(v) - 1:

@@ -45,19 +45,49 @@ def previous(values):
     return np.concatenate((values[-1:], values[:-1]))
 
 
-def edge_components(v, closed):
-    """The edges' ``x`` and ``y`` components, each as one contiguous array laid out so that ``X[:-1]``
-    and ``X[1:]`` are the edges into and out of each vertex where the turn is defined: for a closed
-    curve ``[e_{n-1/2}, e_{1/2}, ..., e_{n-1/2}]`` (``n + 1`` entries), for an open one the ``n - 1``
-    edges. Infinite where an edge overflows; the curve refuses those."""
-    x, y, n = v[:, 0], v[:, 1], len(v)
-    X, Y = (np.empty(n + 1 if closed else n - 1) for _ in range(2))
-    with np.errstate(over="ignore"):
-        for column, out in ((x, X), (y, Y)):
-            np.subtract(column[1:], column[:-1], out=out[1:n] if closed else out)
-            if closed:
-                out[0] = out[n] = column[0] - column[-1]
-    return X, Y
+BLOCK = 1 << 15
+"""Turns per block in :func:`turns` and :func:`curvature`. numpy makes a pass over its arrays for
+each operation; over a block of 2^15 vertices (256 kB an array) those passes stay in the processor's
+cache, where passes over whole arrays of a million vertices would each go out to memory."""
+
+
+def blocks(n):
+    """``(start, stop)`` of the consecutive blocks of at most :data:`BLOCK` that cover ``range(n)``."""
+    return [(start, min(start + BLOCK, n)) for start in range(0, n, BLOCK)]
+
+
+def _window(v, start, stop, closed):
+    """The vertices that the turns ``start .. stop - 1`` and their edges need: turn ``j`` is at vertex
+    ``j`` of a closed curve (from ``v[j - 1]``, wrapping around) and at ``j + 1`` of an open one."""
+    if not closed:
+        return v[start:stop + 2]
+    window = v[start - 1:stop + 1] if start else np.concatenate((v[-1:], v[:stop + 1]))
+    return window if stop < len(v) else np.concatenate((window, v[:1]))
+
+
+def turns(v, closed):
+    """``(L, t, ok)``: the edge lengths, ``tan(psi / 2)`` at each turn of the curve through ``v``, and
+    whether every edge length is positive and finite (if not, the curve refuses ``v``).
+
+    ``t[j]`` is the turn from edge ``L[j]`` to edge ``L[j + 1]``: at every vertex of a closed curve,
+    whose ``L[0] = L[n]`` is the closing edge, and at the interior vertices of an open one. Both are
+    computed block by block (:data:`BLOCK`), by :func:`lengths` and :func:`tan_half_turn`.
+    """
+    m = len(v) if closed else len(v) - 2  # the turns
+    L, t, near, ok = np.empty(m + 1), np.empty(m), [], True
+    with np.errstate(all="ignore"):
+        for start, stop in blocks(m) or [(0, 0)]:  # (0, 0): the single edge of a two-vertex polyline
+            window = _window(v, start, stop, closed)
+            x, y = (np.subtract(window[1:, i], window[:-1, i]) for i in (0, 1))  # the edges' components
+            edge_lengths = L[start:stop + 1]
+            safe = lengths(x, y, out=edge_lengths)
+            if safe or 0 < edge_lengths.min() and edge_lengths.max() < np.inf:
+                near.append(start + tan_half_turn(x, y, edge_lengths, out=t[start:stop], safe=safe))
+            else:
+                ok = False
+    if ok and near and len(at := np.concatenate(near)):  # within about 7 degrees of a turn straight back:
+        t[at] = _exact_tan_half_turn(v, at if closed else at + 1)  # the exact turn of the vertices
+    return L, t, ok
 
 
 def J(u):
@@ -65,20 +95,22 @@ def J(u):
     return np.stack([-u[:, 1], u[:, 0]], axis=1)
 
 
-def lengths(x, y):
-    """``|(x_i, y_i)|`` for each ``i``, without under- or overflow at any scale.
+def lengths(x, y, out):
+    """``|(x_i, y_i)|`` for each ``i`` into ``out``, without under- or overflow at any scale; returns
+    whether every length lies in :data:`SAFE`.
 
     ``sqrt(x*x + y*y)`` is several times cheaper than ``np.hypot``; it is used where every length
     lies in :data:`SAFE`, where its squares can neither under- nor overflow.
     """
     with np.errstate(over="ignore", under="ignore", invalid="ignore"):
-        fast = x * x
-        fast += y * y
-        np.sqrt(fast, out=fast)
-    if len(fast) and SAFE[0] < fast.min() and fast.max() < SAFE[1]:
-        return fast
+        np.multiply(x, x, out=out)
+        out += y * y
+        np.sqrt(out, out=out)
+    if len(out) and SAFE[0] < out.min() and out.max() < SAFE[1]:
+        return True
     with np.errstate(over="ignore"):  # a length beyond the floats: the curve refuses it
-        return np.hypot(x, y)
+        np.hypot(x, y, out=out)
+    return False
 
 
 def unit(vectors, norms):
@@ -91,30 +123,30 @@ def unit(vectors, norms):
     return scaled / np.hypot(scaled[:, 0], scaled[:, 1])[:, None]
 
 
-def tan_half_turn(X, Y, L, v, closed):
-    """``tan(psi / 2)`` for the clockwise turn ``psi`` at each vertex of ``v`` where it is defined.
+def tan_half_turn(X, Y, L, out, safe=False):
+    """``tan(psi / 2)`` for the clockwise turn ``psi`` from each edge to the next, into ``out``.
 
-    ``X``, ``Y`` are the edges' components and ``L`` their lengths, laid out by
-    :func:`edge_components`: the turn ``j`` is from ``a = (X, Y)[j]`` to ``b = (X, Y)[j + 1]``
-    (every vertex of a closed curve; the interior ones of an open one). With ``|a||b| sin psi = -(a x b)`` (clockwise is positive) and ``|a||b| cos psi = a . b``,
+    ``X``, ``Y`` are the edges' components and ``L`` their lengths: turn ``j`` is from
+    ``a = (X, Y)[j]`` to ``b = (X, Y)[j + 1]``. With ``|a||b| sin psi = -(a x b)`` (clockwise is
+    positive) and ``|a||b| cos psi = a . b``,
 
         tan(psi/2) = -(a x b) / (|a||b| + a . b) = (|a||b| - a . b) / -(a x b).
 
     The first form is used where ``a . b >= 0``, the second where the turn exceeds a right angle;
     neither cancels in its half but for the cross product, which near a turn straight back is a
     difference of two nearly equal products. So where ``|a x b| < |a||b| / 8`` and ``a . b < 0``
-    (a turn within about 7 degrees of ``pi``) the cross product is recomputed from the vertices
-    themselves: each edge is kept with its rounding error (Knuth's two-sum) and each product as
+    (a turn within about 7 degrees of ``pi``) the turns are returned, and :func:`turns` recomputes
+    the cross product from the vertices themselves: each edge is kept with its rounding error (Knuth's two-sum) and each product as
     two floats (Dekker), and the 16 terms are added without rounding error (:func:`exact_sum`).
     There ``tan(psi/2)`` is then that of the exact turn of the vertices given, to a few units in
     the last place; elsewhere the cross product's rounding moves ``psi`` by at most 4.4e-16
     radians and ``tan(psi/2)`` by at most 4e-15 of itself near ``pi``. Where the edges point in
     exactly opposite directions the result is ``+inf`` (``psi = pi``). Where an edge length lies
     outside :data:`SAFE`, each row is first scaled by a power of two (exactly), so that no product
-    under- or overflows and the result is the same at every scale.
+    under- or overflows and the result is the same at every scale (``safe``: they all lie in it).
     """
     ax, ay, bx, by, la, lb = X[:-1], Y[:-1], X[1:], Y[1:], L[:-1], L[1:]
-    if not (len(L) and SAFE[0] < L.min() and L.max() < SAFE[1]):
+    if not (safe or len(L) and SAFE[0] < L.min() and L.max() < SAFE[1]):
         ea, eb = np.frexp(la)[1], np.frexp(lb)[1]
         ax, ay, la = np.ldexp(ax, -ea), np.ldexp(ay, -ea), np.ldexp(la, -ea)
         bx, by, lb = np.ldexp(bx, -eb), np.ldexp(by, -eb), np.ldexp(lb, -eb)
@@ -123,18 +155,15 @@ def tan_half_turn(X, Y, L, v, closed):
     minus_cross = ay * bx
     minus_cross -= ax * by
     ll = la * lb
-    t = ll + dot
+    t = np.add(ll, dot, out=out)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         np.divide(minus_cross, t, out=t)  # right where a . b >= 0: most turns
         wide = np.flatnonzero(dot < 0) if len(dot) and dot.min() < 0 else np.zeros(0, np.intp)
         t[wide] = (ll[wide] - dot[wide]) / minus_cross[wide]
-    near = wide[8 * np.abs(minus_cross[wide]) < ll[wide]]
-    if len(near):  # within about 7 degrees of a turn straight back: the exact turn of the vertices
-        t[near] = _exact_tan_half_turn(v, near + (0 if closed else 1))
-    return t
+    return wide[8 * np.abs(minus_cross[wide]) < ll[wide]]  # within about 7 degrees of a turn straight back
 
 
-def sin_half(t):
+def sin_half(t, out=None):
     """``sin(psi / 2)`` from ``t = tan(psi / 2)``: ``t / sqrt(1 + t^2)``, and ``sign(t)`` where
     ``|t| > 1e150`` (there ``1 / sqrt(1 + 1 / t^2)`` is 1 to double precision)."""
     with np.errstate(over="ignore", invalid="ignore"):
@@ -142,9 +171,29 @@ def sin_half(t):
         big = np.flatnonzero(s > 1e300) if len(s) and s.max() > 1e300 else np.zeros(0, np.intp)  # |t| > 1e150
         s += 1.0
         np.sqrt(s, out=s)
-        np.divide(t, s, out=s)
+        s = np.divide(t, s, out=s if out is None else out)
     s[big] = np.sign(t[big])
     return s
+
+
+HALF_TURN = {"angle": lambda t, out: np.maximum(np.arctan(t, out=out), ABOVE_MINUS_PI / 2, out=out),
+             "sine": sin_half, "tangent": lambda t, out: t}
+"""``psi/2``, ``sin(psi/2)`` and ``tan(psi/2)`` from ``t = tan(psi/2)``, into ``out``."""
+
+
+def curvature(kind, t, L):
+    """The curvature ``kind`` at each turn from ``t = tan(psi / 2)`` and the edge lengths ``L``, laid
+    out as :func:`turns` gives them: ``HALF_TURN[kind](t) / (A / 2)``, ``A / 2 = (L[j] + L[j + 1]) / 4``.
+    This is ``psi / A``, ``2 sin(psi/2) / A`` or ``2 tan(psi/2) / A`` (eqs. 1, 3, 4) to the last
+    bit where ``A`` is a normal float (halving is exact there), and no ``2 A`` can overflow. Block
+    by block, as :func:`turns`."""
+    k = np.empty(len(t))
+    with np.errstate(over="ignore", invalid="ignore", under="ignore", divide="ignore"):
+        for start, stop in blocks(len(t)):
+            half_A = np.add(L[start:stop], L[start + 1:stop + 1])
+            half_A *= 0.25
+            np.divide(HALF_TURN[kind](t[start:stop], out=k[start:stop]), half_A, out=k[start:stop])
+    return k
 
 
 def _exact_tan_half_turn(v, at):

@@ -64,9 +64,11 @@ class DiscreteCurve:
 
     def __init__(self, vertices: npt.ArrayLike, closed: bool = True) -> None:
         self._closed = check.flag(closed, "closed")
-        v = check.enough(check.points(vertices, "vertex"), self._closed)
+        v = check.enough(check.points(vertices, "vertex", finite=False), self._closed)
         self._v = nx.frozen(v)
-        check.edges(v, self.edge_lengths, self.length, self._closed)  # no two equal neighbours, no overflow
+        L, t, ok = nx.turns(v, self._closed)  # the edge lengths (a closed curve's last first too), tan(psi/2)
+        self._turns = nx.frozen(L), nx.frozen(t)
+        check.edges(v, self.edge_lengths, self.length, self._closed, ok)  # finite, no equal neighbours, no overflow
 
     def __len__(self) -> int:
         return len(self._v)
@@ -121,13 +123,9 @@ class DiscreteCurve:
                [ 1., -1.],
                [-1.,  0.]])
         """
-        X, Y, _ = self._components  # X[0] repeats a closed curve's last edge
-        return nx.frozen(np.stack((X[int(self.closed):], Y[int(self.closed):]), axis=1))
-
-    @cached_property
-    def _components(self) -> tuple[Array, Array, Array]:  # the edges' x, y and lengths, laid out for the turns
-        X, Y = nx.edge_components(self._v, self.closed)
-        return nx.frozen(X), nx.frozen(Y), nx.frozen(nx.lengths(X, Y))
+        v = self._v
+        with np.errstate(over="ignore"):  # an edge beyond the floats: the curve refuses it
+            return nx.frozen(np.diff(v, axis=0, append=v[:1]) if self.closed else np.diff(v, axis=0))
 
     @cached_property
     def edge_lengths(self) -> Array:
@@ -136,7 +134,7 @@ class DiscreteCurve:
         >>> DiscreteCurve([[0, 0], [3, 4], [3, 0]]).edge_lengths
         array([5., 4., 3.])
         """
-        return nx.frozen(self._components[2][int(self.closed):])
+        return self._turns[0][int(self.closed):]
 
     @cached_property
     def length(self) -> float:
@@ -175,7 +173,7 @@ class DiscreteCurve:
         >>> DiscreteCurve([[0, 0], [0, 1], [1, 1], [1, 0]]).tan_half_psi        # tan(45 degrees)
         array([1., 1., 1., 1.])
         """
-        return nx.frozen(nx.tan_half_turn(*self._components, self._v, self.closed))
+        return self._turns[1]
 
     @cached_property
     def reversals(self) -> npt.NDArray[np.intp]:
@@ -212,7 +210,7 @@ class DiscreteCurve:
         >>> DiscreteCurve([[0, 0], [3, 4], [3, 0]]).dual_lengths
         array([4. , 4.5, 3.5])
         """
-        half = self._components[2] * 0.5
+        half = self._turns[0] * 0.5
         if self.closed:
             return nx.frozen(np.add(half[:-1], half[1:], out=half[1:]))
         return nx.frozen(np.concatenate(([0.0], half)) + np.concatenate((half, [0.0])))
@@ -311,8 +309,9 @@ class DiscreteCurve:
         * ``"sine"``:    ``k_i = 4 sin(psi_i/2) / (2 A_i)``   (eq. 3, from the gradient of length)
         * ``"tangent"``: ``k_i = 4 tan(psi_i/2) / (2 A_i)``   (eq. 4, from offset inflation)
 
-        Each is computed as ``psi_i / A_i``, ``2 sin(psi_i/2) / A_i``, ``2 tan(psi_i/2) / A_i``, which
-        cannot overflow where ``2 A_i`` would. Accuracy: that of ``psi_i`` (see :attr:`turning_angles`) and a few rounding errors;
+        Each is computed as ``(psi_i/2) / (A_i/2)``, ``sin(psi_i/2) / (A_i/2)`` or ``tan(psi_i/2) / (A_i/2)``
+        from ``tan(psi_i/2)``, which cannot overflow where ``2 A_i`` would. Accuracy: that of ``psi_i``
+        (see :attr:`turning_angles`) and a few rounding errors;
         a curvature below the smallest normal float (2.2e-308) keeps only its subnormal bits. The
         tangent formula diverges where the curve turns straight back (``psi_i = pi``): there it
         raises :class:`~ddg.errors.DegenerateCurveError`, and a curvature beyond the largest float
@@ -325,24 +324,17 @@ class DiscreteCurve:
         check.choose(kind, CURVATURES, "curvature kind")
         cache = self.__dict__.setdefault("_curvatures", {})
         if kind not in cache:
-            with np.errstate(over="ignore", invalid="ignore", under="ignore", divide="ignore"):
-                if kind == "angle":
-                    k = self.turning_angles / self._A                    # eq. (1)
-                elif kind == "sine":
-                    k = nx.sin_half(self.tan_half_psi)                   # eq. (3), sin(psi/2) from tan(psi/2)
-                    k *= 2.0
-                    k /= self._A
-                else:
-                    k = self.tan_half_psi * 2.0                          # eq. (4)
-                    k /= self._A
+            k = nx.curvature(kind, self.tan_half_psi, self._turns[0])  # eq. (1), (3) or (4)
+            with np.errstate(over="ignore", invalid="ignore"):
                 finite = np.isfinite(np.add.reduce(k))
-            if kind == "tangent" and not finite and len(self.reversals):
+            if not finite and kind == "tangent" and len(self.reversals):
                 raise DegenerateCurveError(f"the tangent curvature (eq. 4) diverges at vertex {self.reversals[0]}: the "
                                            "curve turns straight back there (psi = pi)")
-            first = 0 if self.closed else 1
-            check.require_finite(k, lambda j: f"the {kind} curvature at vertex {j + first} is beyond the largest float "
-                                 f"(a turn of {np.degrees(self.turning_angles[j]):.6g} degrees between edges "
-                                 f"{self._A[j]:.3g} long on average)", OutOfRangeError)
+            if not finite:
+                first = 0 if self.closed else 1
+                check.require_finite(k, lambda j: f"the {kind} curvature at vertex {j + first} is beyond the largest "
+                                     f"float (a turn of {np.degrees(self.turning_angles[j]):.6g} degrees between "
+                                     f"edges {self._A[j]:.3g} long on average)", OutOfRangeError)
             cache[kind] = nx.frozen(k)
         return cache[kind]
 

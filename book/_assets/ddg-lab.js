@@ -238,10 +238,13 @@
   C.curvature = function (kind) {  // k_i by the lecture's formulas, with 2 A_i = |e_{i-1/2}| + |e_{i+1/2}|
     choose(kind === undefined ? "angle" : kind, CURVATURES, "curvature kind");
     kind = kind || "angle";
-    var psi = this.turning_angles, t = this.tan_half_psi, k = this.dual_lengths.map(function (A, i) {
-      if (kind === "angle") return psi[i] / A;                           // eq. (1): 2 psi / (2 A)
-      if (kind === "sine") return sin_half(t[i]) * 2 / A;                // eq. (3): 4 sin(psi/2) / (2 A)
-      return t[i] * 2 / A;                                               // eq. (4): 4 tan(psi/2) / (2 A)
+    // _numerics.curvature: psi/2, sin(psi/2) or tan(psi/2) over A_i / 2 = (|e_{i-1/2}| + |e_{i+1/2}|) / 4
+    var psi = this.turning_angles, t = this.tan_half_psi, l = this.edge_lengths, lp = previous(l);
+    var k = t.map(function (ti, i) {
+      var half_A = (lp[i] + l[i]) * 0.25;
+      if (kind === "angle") return Math.max(Math.atan(ti), ABOVE_MINUS_PI / 2) / half_A;  // eq. (1): 2 psi / (2 A)
+      if (kind === "sine") return sin_half(ti) / half_A;                                  // eq. (3): 4 sin(psi/2) / (2 A)
+      return ti / half_A;                                                                 // eq. (4): 4 tan(psi/2) / (2 A)
     });
     if (kind === "tangent" && this.reversals.length) fail("the tangent curvature (eq. 4) diverges at vertex " + this.reversals[0] + ": the curve turns straight back there (psi = pi)");
     var j = k.findIndex(function (x) { return !isFinite(x); });
