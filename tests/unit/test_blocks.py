@@ -1,0 +1,100 @@
+"""ddg computes the turns and the curvatures block by block (``ddg._numerics.BLOCK``, 2^15 turns):
+where the blocks begin and end changes nothing.
+
+Each curve is computed again with blocks of 1, 2, 3, 5 and 64 turns, so that every vertex lies on a
+block's first or last turn somewhere, and must give the same bits: edges, lengths, tan(psi/2), the
+reversals and all three curvatures, or the same refusal. The curves are drawn with a seeded rng:
+closed and open, from 2 vertices up, with exact and near reversals (a vertex in the middle of its
+neighbours' line, or just off it), at scales whose edges lie outside ``_numerics.SAFE`` (where
+``tan_half_turn`` rescales each edge), with repeated vertices and NaN; and one closed and one open
+curve of more than two default blocks.
+"""
+
+import numpy as np
+import pytest
+
+import ddg
+from ddg import _numerics
+
+SIZES = (1, 2, 3, 5, 64)
+
+
+def drawn(rng, count):
+    """``count`` polygons (vertices, closed) of every kind the docstring lists."""
+    found = []
+    for i in range(count):
+        closed = bool(i % 2)
+        n = int(rng.integers(3 if closed else 2, 40))
+        v = rng.normal(size=(n, 2))
+        if i % 5 == 0:
+            v = np.round(v * 4) / 4  # a lattice: exact reversals and repeated vertices
+        if i % 3 == 0 and n >= 3:  # a reversal at vertex j: v_j beyond v_(j+1) on the line from v_(j-1), or just off it
+            j = int(rng.integers(1, n - 1))
+            v[j] = v[j - 1] + 2 * (v[j + 1] - v[j - 1]) + (0 if i % 2 else rng.normal(size=2) * 1e-13)
+        if i % 7 == 0:
+            v = v * 2.0 ** rng.choice([-700, -520, 520, 700])  # edges outside SAFE, exactly
+        if i % 11 == 0:
+            v[int(rng.integers(0, n))] = np.nan
+        found.append((v, closed))
+    return found
+
+
+def everything(v, closed):
+    """All that the blocks compute, or the refusal."""
+    try:
+        curve = ddg.DiscreteCurve(v, closed=closed)
+    except ValueError as refused:
+        return [type(refused).__name__, str(refused)]
+    found = [curve.edges, curve.edge_lengths, curve.length, curve.tan_half_psi, curve.reversals]
+    for kind in ddg.CURVATURES:
+        try:
+            found.append(curve.curvature(kind))
+        except ValueError as refused:
+            found.append(str(refused))
+    return found
+
+
+def independently(v, closed):
+    """The edge lengths and tan(psi/2) from whole-array numpy, for turns away from a reversal; NaN elsewhere."""
+    e = np.diff(v, axis=0, append=v[:1]) if closed else np.diff(v, axis=0)
+    a, b = (np.roll(e, 1, axis=0), e) if closed else (e[:-1], e[1:])
+    psi = np.arctan2(a[:, 1] * b[:, 0] - a[:, 0] * b[:, 1], (a * b).sum(axis=1))  # clockwise positive
+    return np.hypot(e[:, 0], e[:, 1]), np.where(np.abs(psi) < 3, np.tan(psi / 2), np.nan)
+
+
+def same(a, b):
+    assert len(a) == len(b)
+    for x, y in zip(a, b, strict=True):
+        assert np.array_equal(x, y, equal_nan=True) if isinstance(x, np.ndarray) else x == y, (x, y)
+
+
+@pytest.mark.parametrize("size", SIZES)
+def test_blocks_of_any_size_give_the_same_bits(size, monkeypatch):
+    cases = drawn(np.random.default_rng(size), 150)
+    expected = [everything(v, closed) for v, closed in cases]
+    for (v, closed), want in zip(cases, expected, strict=True):  # right, and not only alike
+        if not isinstance(want[0], str) and 1e-100 < np.abs(v).max() < 1e100:  # where products are plain
+            lengths, t = independently(v, closed)
+            assert np.allclose(want[1], lengths, rtol=1e-15, atol=0), (v, closed)
+            away = ~np.isnan(t)
+            assert np.allclose(want[3][away], t[away], rtol=1e-12, atol=1e-15), (v, closed)
+    assert sum(isinstance(e[0], str) for e in expected) >= 10  # refusals were drawn
+    assert sum(len(e[4]) for e in expected if not isinstance(e[0], str)) >= 5  # and exact reversals
+    monkeypatch.setattr(_numerics, "BLOCK", size)
+    for (v, closed), want in zip(cases, expected, strict=True):
+        same(everything(v, closed), want)
+
+
+@pytest.mark.parametrize("closed", [True, False])
+def test_a_curve_of_several_default_blocks_is_computed_as_one_of_small_blocks(closed, monkeypatch):
+    rng = np.random.default_rng(7)
+    n = 2 * _numerics.BLOCK + 3
+    v = np.round((ddg.regular_polygon(n).vertices + rng.normal(size=(n, 2)) * 1e-6) * 2**20) / 2**20
+    v[_numerics.BLOCK] = 2 * v[_numerics.BLOCK - 1] - v[_numerics.BLOCK + 1]  # exact: a reversal where a block begins
+    want = everything(v, closed)
+    assert len(want[4]) == 1, want[4]
+    lengths, t = independently(v, closed)
+    away = ~np.isnan(t)
+    assert np.allclose(want[1], lengths, rtol=1e-15, atol=0) and np.allclose(want[3][away], t[away], rtol=1e-9)
+    monkeypatch.setattr(_numerics, "BLOCK", 1000)
+    same(everything(v, closed), want)
