@@ -9,8 +9,13 @@ move of each explorer takes (ddg.explore), and how many curve-shortening steps p
 ddg.flow takes at n = 10^2, 10^4, 10^6, explicit and semi-implicit (with the peak memory of one
 semi-implicit step: its linear solve is cyclic reduction, O(n)).
 
-Ratios, not seconds, are comparable between machines; the machines are shared, so run it twice
-before believing a difference of 20%.
+Ratios compare between machines better than seconds, but not fully: a new curve and its three
+curvatures write about 3.5 times the vertices' bytes to memory that the process has just had back
+from the operating system (glibc returns what a dropped curve freed), and the first touch of such
+memory costs from almost nothing to more than the copy itself (on a small virtual machine, about
+1.3 ms for 8 MB, where the copy of 16 MB takes 1.1 ms), while the copy up to n = 10^6 reuses the
+memory it freed. At n = 10^7 the copy gets new memory too. The machines are shared, so run it
+twice before believing a difference of 20%.
 """
 
 import gc
