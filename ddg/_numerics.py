@@ -186,14 +186,16 @@ def curvature(kind, t, L):
     out as :func:`turns` gives them: ``HALF_TURN[kind](t) / (A / 2)``, ``A / 2 = (L[j] + L[j + 1]) / 4``.
     This is ``psi / A``, ``2 sin(psi/2) / A`` or ``2 tan(psi/2) / A`` (eqs. 1, 3, 4) to the last
     bit where ``A`` is a normal float (halving is exact there), and no ``2 A`` can overflow. Block
-    by block, as :func:`turns`."""
-    k = np.empty(len(t))
+    by block, as :func:`turns`. Returns ``(k, finite)``: ``finite`` is False if an entry may not be
+    (a block's sum is not finite)."""
+    k, finite = np.empty(len(t)), True
     with np.errstate(over="ignore", invalid="ignore", under="ignore", divide="ignore"):
         for start, stop in blocks(len(t)):
             half_A = np.add(L[start:stop], L[start + 1:stop + 1])
             half_A *= 0.25
-            np.divide(HALF_TURN[kind](t[start:stop], out=k[start:stop]), half_A, out=k[start:stop])
-    return k
+            block = np.divide(HALF_TURN[kind](t[start:stop], out=k[start:stop]), half_A, out=k[start:stop])
+            finite &= bool(np.isfinite(np.add.reduce(block)))
+    return k, finite
 
 
 def _exact_tan_half_turn(v, at):

@@ -324,9 +324,7 @@ class DiscreteCurve:
         check.choose(kind, CURVATURES, "curvature kind")
         cache = self.__dict__.setdefault("_curvatures", {})
         if kind not in cache:
-            k = nx.curvature(kind, self.tan_half_psi, self._turns[0])  # eq. (1), (3) or (4)
-            with np.errstate(over="ignore", invalid="ignore"):
-                finite = np.isfinite(np.add.reduce(k))
+            k, finite = nx.curvature(kind, self.tan_half_psi, self._turns[0])  # eq. (1), (3) or (4)
             if not finite and kind == "tangent" and len(self.reversals):
                 raise DegenerateCurveError(f"the tangent curvature (eq. 4) diverges at vertex {self.reversals[0]}: the "
                                            "curve turns straight back there (psi = pi)")
