@@ -146,8 +146,8 @@ def values(data, name, what="vertex", columns=None, finite=True):
         return v
     with np.errstate(over="ignore", invalid="ignore"):
         if not np.isfinite(np.add.reduce(v, axis=None)):
-            finite = np.isfinite(v)
-            bad = np.flatnonzero(~(finite if finite.ndim == 1 else finite.all(axis=1)))
+            fine = np.isfinite(v)
+            bad = np.flatnonzero(~(fine if fine.ndim == 1 else fine.all(axis=1)))
             i = int(bad[0]) if len(bad) else -1  # -1: all finite, only their sum overflowed
             if i < 0:
                 pass
@@ -183,7 +183,8 @@ def enough(v, closed):
 def edges(v, lengths, length, closed, ok):
     """Refuse a curve with a NaN or infinite coordinate (``InputError``), two equal consecutive
     vertices (``DegenerateCurveError``), or an edge or length beyond the largest float
-    (``OutOfRangeError``), naming the vertex. ``ok``: every edge length is positive and finite."""
+    (``OutOfRangeError``), naming the vertex. ``ok``: every edge length is known to be positive and
+    finite (``lengths`` lie in ``_numerics.SAFE``)."""
     if ok and np.isfinite(length):
         return
     require_finite(v, lambda i: f"vertex {i} has a NaN or infinite coordinate: {v[i]}")

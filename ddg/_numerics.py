@@ -46,7 +46,7 @@ def previous(values):
 
 
 BLOCK = 1 << 15
-"""Turns per block in :func:`turns` and :func:`curvature`. numpy makes a pass over its arrays for
+"""Turns per block in :func:`edge_lengths`, :func:`turns` and :func:`curvature`. numpy makes a pass over its arrays for
 each operation; over a block of 2^15 vertices (256 kB an array) those passes stay in the processor's
 cache, where passes over whole arrays of a million vertices would each go out to memory."""
 
@@ -65,52 +65,61 @@ def _window(v, start, stop, closed):
     return window if stop < len(v) else np.concatenate((window, v[:1]))
 
 
-def turns(v, closed):
-    """``(L, t, ok)``: the edge lengths, ``tan(psi / 2)`` at each turn of the curve through ``v``, and
-    whether every edge length is positive and finite (if not, the curve refuses ``v``).
+def _edges(v, start, stop, closed):
+    """The ``x`` and ``y`` components of the edges into and out of the turns ``start .. stop - 1``."""
+    window = _window(v, start, stop, closed)
+    return np.subtract(window[1:, 0], window[:-1, 0]), np.subtract(window[1:, 1], window[:-1, 1])
 
-    ``t[j]`` is the turn from edge ``L[j]`` to edge ``L[j + 1]``: at every vertex of a closed curve,
-    whose ``L[0] = L[n]`` is the closing edge, and at the interior vertices of an open one. Both are
-    computed block by block (:data:`BLOCK`), by :func:`lengths` and :func:`tan_half_turn`.
+
+def edge_lengths(v, closed):
+    """``(L, safe)``: the edge lengths laid out for the turns, and whether they all lie in :data:`SAFE`.
+
+    ``L[j]`` and ``L[j + 1]`` are the edges into and out of turn ``j``: every vertex of a closed
+    curve, whose closing edge is both ``L[0]`` and ``L[n]``, and the interior vertices of an open
+    one. Block by block (:data:`BLOCK`), ``sqrt(x*x + y*y)``; if any length falls outside
+    :data:`SAFE`, all of them are ``hypot(x, y)`` (:func:`lengths`), the same formula for every edge.
     """
     m = len(v) if closed else len(v) - 2  # the turns
-    L, t, near, ok = np.empty(m + 1), np.empty(m), [], True
+    L, safe = np.empty(m + 1), True
     with np.errstate(all="ignore"):
         for start, stop in blocks(m) or [(0, 0)]:  # (0, 0): the single edge of a two-vertex polyline
             window = _window(v, start, stop, closed)
-            x, y = (np.subtract(window[1:, i], window[:-1, i]) for i in (0, 1))  # the edges' components
-            edge_lengths = L[start:stop + 1]
-            safe = lengths(x, y, out=edge_lengths)
-            if safe or 0 < edge_lengths.min() and edge_lengths.max() < np.inf:
-                near.append(start + tan_half_turn(x, y, edge_lengths, out=t[start:stop], safe=safe))
-            else:
-                ok = False
-    if ok and near and len(at := np.concatenate(near)):  # within about 7 degrees of a turn straight back:
-        t[at] = _exact_tan_half_turn(v, at if closed else at + 1)  # the exact turn of the vertices
-    return L, t, ok
+            squares = np.subtract(window[1:], window[:-1])  # the edges, then their components squared
+            squares *= squares
+            block = np.add(squares[:, 0], squares[:, 1], out=L[start:stop + 1])
+            np.sqrt(block, out=block)
+            safe &= bool(SAFE[0] < block.min() and block.max() < SAFE[1])
+        if not safe:  # squares that under- or overflow (or a length of 0 or beyond the floats: refused)
+            for start, stop in blocks(m) or [(0, 0)]:
+                x, y = _edges(v, start, stop, closed)
+                np.hypot(x, y, out=L[start:stop + 1])
+    return L, safe
+
+
+def turns(v, closed, L, safe):
+    """``tan(psi / 2)`` at each turn of the curve through ``v``, whose edge lengths ``L`` and
+    ``safe`` :func:`edge_lengths` gave; block by block (:data:`BLOCK`) by :func:`tan_half_turn`.
+
+    Within about 7 degrees of a turn straight back, where the cross product of the edges cancels,
+    the turn is then recomputed from the vertices themselves (:func:`_exact_tan_half_turn`): there
+    ``tan(psi/2)`` is that of the exact turn of the vertices given, to a few units in the last
+    place; elsewhere the cross product's rounding moves ``psi`` by at most 4.4e-16 radians and
+    ``tan(psi/2)`` by at most 4e-15 of itself near ``pi``. Where the edges point in exactly opposite
+    directions the result is ``+inf`` (``psi = pi``).
+    """
+    t, near = np.empty(len(L) - 1), [np.zeros(0, np.intp)]
+    with np.errstate(all="ignore"):  # (underflow in the exact products: below 2^-1000 of an edge)
+        for start, stop in blocks(len(t)):
+            x, y = _edges(v, start, stop, closed)
+            near.append(start + tan_half_turn(x, y, L[start:stop + 1], out=t[start:stop], safe=safe))
+        at = np.concatenate(near)
+        t[at] = _exact_tan_half_turn(v, at if closed else at + 1)
+    return t
 
 
 def J(u):
     """Rotate each row of ``u`` by +90 degrees: ``J(x, y) = (-y, x)``."""
     return np.stack([-u[:, 1], u[:, 0]], axis=1)
-
-
-def lengths(x, y, out):
-    """``|(x_i, y_i)|`` for each ``i`` into ``out``, without under- or overflow at any scale; returns
-    whether every length lies in :data:`SAFE`.
-
-    ``sqrt(x*x + y*y)`` is several times cheaper than ``np.hypot``; it is used where every length
-    lies in :data:`SAFE`, where its squares can neither under- nor overflow.
-    """
-    with np.errstate(over="ignore", under="ignore", invalid="ignore"):
-        np.multiply(x, x, out=out)
-        out += y * y
-        np.sqrt(out, out=out)
-    if len(out) and SAFE[0] < out.min() and out.max() < SAFE[1]:
-        return True
-    with np.errstate(over="ignore"):  # a length beyond the floats: the curve refuses it
-        np.hypot(x, y, out=out)
-    return False
 
 
 def unit(vectors, norms):
@@ -123,8 +132,9 @@ def unit(vectors, norms):
     return scaled / np.hypot(scaled[:, 0], scaled[:, 1])[:, None]
 
 
-def tan_half_turn(X, Y, L, out, safe=False):
-    """``tan(psi / 2)`` for the clockwise turn ``psi`` from each edge to the next, into ``out``.
+def tan_half_turn(X, Y, L, out, safe=None):
+    """``tan(psi / 2)`` for the clockwise turn ``psi`` from each edge to the next, into ``out``;
+    returns the turns within about 7 degrees of ``pi``, for :func:`turns` to compute exactly.
 
     ``X``, ``Y`` are the edges' components and ``L`` their lengths: turn ``j`` is from
     ``a = (X, Y)[j]`` to ``b = (X, Y)[j + 1]``. With ``|a||b| sin psi = -(a x b)`` (clockwise is
@@ -134,19 +144,13 @@ def tan_half_turn(X, Y, L, out, safe=False):
 
     The first form is used where ``a . b >= 0``, the second where the turn exceeds a right angle;
     neither cancels in its half but for the cross product, which near a turn straight back is a
-    difference of two nearly equal products. So where ``|a x b| < |a||b| / 8`` and ``a . b < 0``
-    (a turn within about 7 degrees of ``pi``) the turns are returned, and :func:`turns` recomputes
-    the cross product from the vertices themselves: each edge is kept with its rounding error (Knuth's two-sum) and each product as
-    two floats (Dekker), and the 16 terms are added without rounding error (:func:`exact_sum`).
-    There ``tan(psi/2)`` is then that of the exact turn of the vertices given, to a few units in
-    the last place; elsewhere the cross product's rounding moves ``psi`` by at most 4.4e-16
-    radians and ``tan(psi/2)`` by at most 4e-15 of itself near ``pi``. Where the edges point in
-    exactly opposite directions the result is ``+inf`` (``psi = pi``). Where an edge length lies
-    outside :data:`SAFE`, each row is first scaled by a power of two (exactly), so that no product
-    under- or overflows and the result is the same at every scale (``safe``: they all lie in it).
+    difference of two nearly equal products: those turns, where ``|a x b| < |a||b| / 8`` and
+    ``a . b < 0``, are returned. Unless ``safe`` (every length lies in :data:`SAFE`; ``None``: look),
+    each row is first scaled by a power of two (exactly), so that no product under- or overflows
+    and the result is the same at every scale.
     """
     ax, ay, bx, by, la, lb = X[:-1], Y[:-1], X[1:], Y[1:], L[:-1], L[1:]
-    if not (safe or len(L) and SAFE[0] < L.min() and L.max() < SAFE[1]):
+    if not (safe if safe is not None else len(L) and SAFE[0] < L.min() and L.max() < SAFE[1]):
         ea, eb = np.frexp(la)[1], np.frexp(lb)[1]
         ax, ay, la = np.ldexp(ax, -ea), np.ldexp(ay, -ea), np.ldexp(la, -ea)
         bx, by, lb = np.ldexp(bx, -eb), np.ldexp(by, -eb), np.ldexp(lb, -eb)
@@ -165,7 +169,7 @@ def tan_half_turn(X, Y, L, out, safe=False):
 
 def sin_half(t, out=None):
     """``sin(psi / 2)`` from ``t = tan(psi / 2)``: ``t / sqrt(1 + t^2)``, and ``sign(t)`` where
-    ``|t| > 1e150`` (there ``1 / sqrt(1 + 1 / t^2)`` is 1 to double precision)."""
+    ``|t| > 1e150`` (there ``1 / sqrt(1 + 1 / t^2)`` is 1 to double precision); into ``out`` if given."""
     with np.errstate(over="ignore", invalid="ignore"):
         s = t * t
         big = np.flatnonzero(s > 1e300) if len(s) and s.max() > 1e300 else np.zeros(0, np.intp)  # |t| > 1e150
@@ -178,16 +182,18 @@ def sin_half(t, out=None):
 
 HALF_TURN = {"angle": lambda t, out: np.maximum(np.arctan(t, out=out), ABOVE_MINUS_PI / 2, out=out),
              "sine": sin_half, "tangent": lambda t, out: t}
-"""``psi/2``, ``sin(psi/2)`` and ``tan(psi/2)`` from ``t = tan(psi/2)``, into ``out``."""
+"""``psi/2`` (at least ``-pi/2`` and a rounding error: ``psi`` lies in ``(-pi, pi]``), ``sin(psi/2)``
+and ``tan(psi/2)`` from ``t = tan(psi/2)``: the first two written into ``out``, the last ``t`` itself."""
 
 
 def curvature(kind, t, L):
     """The curvature ``kind`` at each turn from ``t = tan(psi / 2)`` and the edge lengths ``L``, laid
     out as :func:`turns` gives them: ``HALF_TURN[kind](t) / (A / 2)``, ``A / 2 = (L[j] + L[j + 1]) / 4``.
-    This is ``psi / A``, ``2 sin(psi/2) / A`` or ``2 tan(psi/2) / A`` (eqs. 1, 3, 4) to the last
-    bit where ``A`` is a normal float (halving is exact there), and no ``2 A`` can overflow. Block
-    by block, as :func:`turns`. Returns ``(k, finite)``: ``finite`` is False if an entry may not be
-    (a block's sum is not finite)."""
+    This is ``psi / A``, ``2 sin(psi/2) / A`` or ``2 tan(psi/2) / A`` (eqs. 1, 3, 4), to the last
+    bit wherever ``A / 2`` and the edges' halves are normal floats (above 2.2e-308), as halving is
+    exact there; ``L[j] + L[j + 1]`` cannot overflow (the curve's length is finite) and no ``2 psi``,
+    ``2 sin`` or ``2 tan`` is formed that could. Block by block, as :func:`turns`. Returns
+    ``(k, finite)``: ``finite`` is False if an entry may not be (a block's sum is not finite)."""
     k, finite = np.empty(len(t)), True
     with np.errstate(over="ignore", invalid="ignore", under="ignore", divide="ignore"):
         for start, stop in blocks(len(t)):

@@ -66,9 +66,9 @@ class DiscreteCurve:
         self._closed = check.flag(closed, "closed")
         v = check.enough(check.points(vertices, "vertex", finite=False), self._closed)
         self._v = nx.frozen(v)
-        L, t, ok = nx.turns(v, self._closed)  # the edge lengths (a closed curve's last first too), tan(psi/2)
-        self._turns = nx.frozen(L), nx.frozen(t)
-        check.edges(v, self.edge_lengths, self.length, self._closed, ok)  # finite, no equal neighbours, no overflow
+        L, self._safe = nx.edge_lengths(v, self._closed)  # laid out for the turns: a closed curve's last edge first too
+        self._L = nx.frozen(L)
+        check.edges(v, self.edge_lengths, self.length, self._closed, self._safe)  # finite, no equal neighbours or overflow
 
     def __len__(self) -> int:
         return len(self._v)
@@ -134,7 +134,7 @@ class DiscreteCurve:
         >>> DiscreteCurve([[0, 0], [3, 4], [3, 0]]).edge_lengths
         array([5., 4., 3.])
         """
-        return self._turns[0][int(self.closed):]
+        return self._L[int(self.closed):]
 
     @cached_property
     def length(self) -> float:
@@ -173,7 +173,7 @@ class DiscreteCurve:
         >>> DiscreteCurve([[0, 0], [0, 1], [1, 1], [1, 0]]).tan_half_psi        # tan(45 degrees)
         array([1., 1., 1., 1.])
         """
-        return self._turns[1]
+        return nx.frozen(nx.turns(self._v, self.closed, self._L, self._safe))
 
     @cached_property
     def reversals(self) -> npt.NDArray[np.intp]:
@@ -210,7 +210,7 @@ class DiscreteCurve:
         >>> DiscreteCurve([[0, 0], [3, 4], [3, 0]]).dual_lengths
         array([4. , 4.5, 3.5])
         """
-        half = self._turns[0] * 0.5
+        half = self._L * 0.5
         if self.closed:
             return nx.frozen(np.add(half[:-1], half[1:], out=half[1:]))
         return nx.frozen(np.concatenate(([0.0], half)) + np.concatenate((half, [0.0])))
@@ -310,7 +310,7 @@ class DiscreteCurve:
         * ``"tangent"``: ``k_i = 4 tan(psi_i/2) / (2 A_i)``   (eq. 4, from offset inflation)
 
         Each is computed as ``(psi_i/2) / (A_i/2)``, ``sin(psi_i/2) / (A_i/2)`` or ``tan(psi_i/2) / (A_i/2)``
-        from ``tan(psi_i/2)``, which cannot overflow where ``2 A_i`` would. Accuracy: that of ``psi_i``
+        from ``tan(psi_i/2)``, so no ``2 tan(psi_i/2)`` overflows where ``k_i`` would not. Accuracy: that of ``psi_i``
         (see :attr:`turning_angles`) and a few rounding errors;
         a curvature below the smallest normal float (2.2e-308) keeps only its subnormal bits. The
         tangent formula diverges where the curve turns straight back (``psi_i = pi``): there it
@@ -324,7 +324,7 @@ class DiscreteCurve:
         check.choose(kind, CURVATURES, "curvature kind")
         cache = self.__dict__.setdefault("_curvatures", {})
         if kind not in cache:
-            k, finite = nx.curvature(kind, self.tan_half_psi, self._turns[0])  # eq. (1), (3) or (4)
+            k, finite = nx.curvature(kind, self.tan_half_psi, self._L)  # eq. (1), (3) or (4)
             if not finite and kind == "tangent" and len(self.reversals):
                 raise DegenerateCurveError(f"the tangent curvature (eq. 4) diverges at vertex {self.reversals[0]}: the "
                                            "curve turns straight back there (psi = pi)")

@@ -52,7 +52,8 @@ class TurningAngles(Exercise):
     name = "turning_angles"
     expects = "the closed curve turns at every vertex, v_0 and v_(n-1) included"
     forbidden = ("turning_angles", "curvature", "total_curvature", "turning_number", "bisector_normals")
-    measures = ("ddg._numerics.tan_half_turn",)  # where ddg computes the turns, for every copy of DiscreteCurve
+    measures = ("ddg._numerics.tan_half_turn", "ddg._numerics._exact_tan_half_turn")  # ddg's turns (tan_half_psi,
+    # for every copy of DiscreteCurve): a curve is still made, its edges and lengths are still there
 
     def draw(self, rng):
         n = int(rng.integers(3, 20))

@@ -10,6 +10,8 @@ neighbours' line, or just off it), at scales whose edges lie outside ``_numerics
 curve of more than two default blocks.
 """
 
+import fractions
+
 import numpy as np
 import pytest
 
@@ -33,6 +35,10 @@ def drawn(rng, count):
             v[j] = v[j - 1] + 2 * (v[j + 1] - v[j - 1]) + (0 if i % 2 else rng.normal(size=2) * 1e-13)
         if i % 7 == 0:
             v = v * 2.0 ** rng.choice([-700, -520, 520, 700])  # edges outside SAFE, exactly
+        if i % 13 == 0:  # one edge outside SAFE in a curve of unit size: every length by hypot
+            j = int(rng.integers(0, n - 1))
+            v = v - v[j]  # at the origin, where a step of 1e-160 is not lost
+            v[j + 1] = rng.normal(size=2) * 1e-160
         if i % 11 == 0:
             v[int(rng.integers(0, n))] = np.nan
         found.append((v, closed))
@@ -62,6 +68,14 @@ def independently(v, closed):
     return np.hypot(e[:, 0], e[:, 1]), np.where(np.abs(psi) < 3, np.tan(psi / 2), np.nan)
 
 
+def one_formula(curve):
+    """Every edge length by the same formula: sqrt(x^2 + y^2) if all lie in _numerics.SAFE, else hypot."""
+    e, L = curve.edges, curve.edge_lengths
+    if (_numerics.SAFE[0] < L).all() and (L < _numerics.SAFE[1]).all():
+        return np.sqrt(e[:, 0] * e[:, 0] + e[:, 1] * e[:, 1])
+    return np.hypot(e[:, 0], e[:, 1])
+
+
 def same(a, b):
     assert len(a) == len(b)
     for x, y in zip(a, b, strict=True):
@@ -75,6 +89,7 @@ def test_blocks_of_any_size_give_the_same_bits(size, monkeypatch):
     for (v, closed), want in zip(cases, expected, strict=True):  # right, and not only alike
         if not isinstance(want[0], str) and 1e-100 < np.abs(v).max() < 1e100:  # where products are plain
             lengths, t = independently(v, closed)
+            assert np.array_equal(want[1], one_formula(ddg.DiscreteCurve(v, closed=closed))), (v, closed)
             assert np.allclose(want[1], lengths, rtol=1e-15, atol=0), (v, closed)
             away = ~np.isnan(t)
             assert np.allclose(want[3][away], t[away], rtol=1e-12, atol=1e-15), (v, closed)
@@ -83,6 +98,41 @@ def test_blocks_of_any_size_give_the_same_bits(size, monkeypatch):
     monkeypatch.setattr(_numerics, "BLOCK", size)
     for (v, closed), want in zip(cases, expected, strict=True):
         same(everything(v, closed), want)
+
+
+@pytest.mark.parametrize("closed", [True, False])
+@pytest.mark.parametrize("tiny", [False, True])
+def test_one_tiny_edge_anywhere_changes_how_every_length_is_computed(closed, tiny, monkeypatch):
+    """Whether the lengths are sqrt(x^2 + y^2) or hypot is decided for the whole curve, as the lab's
+    JavaScript decides it, not block by block: a curve of three default blocks with one edge of
+    1e-160 in its last block has every length by hypot, to the last bit."""
+    rng = np.random.default_rng(11)
+    n = 2 * _numerics.BLOCK + 5
+    v = ddg.regular_polygon(n).vertices + rng.normal(size=(n, 2)) * 1e-7
+    if tiny:
+        v = v - v[n - 3]  # at the origin, where a step of 1e-160 is not lost
+        v[n - 2] = [1e-160, 3e-161]
+    curve = ddg.DiscreteCurve(v, closed=closed)
+    assert np.array_equal(curve.edge_lengths, one_formula(curve))
+    want = everything(v, closed)
+    monkeypatch.setattr(_numerics, "BLOCK", 4096)
+    same(everything(v, closed), want)
+
+
+def test_numpy_set_to_raise_still_makes_a_curve():
+    """Underflow inside the exact turn (products below 2^-1000 of an edge) is not an error."""
+    with np.errstate(all="raise"):
+        curve = ddg.DiscreteCurve([[0.1, 0.2], [1e300, 1], [0.3, 0.7]], closed=False)
+        assert np.isfinite(curve.tan_half_psi).all() and len(curve.reversals) == 0
+
+
+def test_a_tangent_curvature_whose_double_overflows_is_still_given():
+    """k = tan(psi/2) / (A/2): no 2 tan(psi/2) is formed, which would overflow here (t > 2^1023)."""
+    curve = ddg.DiscreteCurve([[0, 0], [8, 0], [0, 1.6e-307]], closed=False)
+    t, (a, b) = curve.tan_half_psi[0], curve.edge_lengths
+    assert abs(t) > 2.0**1023
+    k = curve.curvature("tangent")[0]
+    assert k == float(4 * fractions.Fraction(t) / (fractions.Fraction(a) + fractions.Fraction(b)))
 
 
 @pytest.mark.parametrize("closed", [True, False])

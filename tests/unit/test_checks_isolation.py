@@ -64,6 +64,25 @@ def test_the_quantity_the_exercise_asks_for_is_switched_off_and_named_by_its_pub
     assert np.allclose(curve.turning_angles, 2 * np.pi / 5) and curve.length_gradient().shape == (5, 2)
 
 
+def test_what_the_exercise_does_not_ask_for_stays_usable():
+    """Switching off ddg's turns leaves a curve to be made and its edges and lengths read: an answer
+    that takes its edges from ddg passes; one that calls the exact turn, private or not, does not."""
+    def from_edges(vertices):
+        e = ddg.DiscreteCurve(vertices).edges
+        a = np.roll(e, 1, axis=0)
+        psi = np.arctan2(a[:, 1] * e[:, 0] - a[:, 0] * e[:, 1], (a * e).sum(axis=1))
+        return np.where(psi == -np.pi, np.pi, psi) + 0 * ddg.DiscreteCurve(vertices).edge_lengths
+
+    def exact(vertices):
+        from ddg import _numerics
+        v = np.asarray(vertices, dtype=float)
+        return 2 * np.arctan(_numerics._exact_tan_half_turn(v, np.arange(len(v))))
+
+    assert checks.check_turning_angles(from_edges, seed=0)
+    feedback = checks.check_turning_angles(exact, seed=0)
+    assert not feedback and "write yourself" in feedback.problem, feedback
+
+
 def test_the_checks_own_code_is_out_of_reach_of_the_answer():
     def importer(vertices):
         from ddg.checks import comparing  # the judge's reference measurements
