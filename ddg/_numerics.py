@@ -76,8 +76,9 @@ def edge_lengths(v, closed):
 
     ``L[j]`` and ``L[j + 1]`` are the edges into and out of turn ``j``: every vertex of a closed
     curve, whose closing edge is both ``L[0]`` and ``L[n]``, and the interior vertices of an open
-    one. Block by block (:data:`BLOCK`), ``sqrt(x*x + y*y)``; if any length falls outside
-    :data:`SAFE`, all of them are ``hypot(x, y)`` (:func:`lengths`), the same formula for every edge.
+    one. Block by block (:data:`BLOCK`), ``sqrt(x*x + y*y)``, several times cheaper than ``hypot``
+    and exact to a rounding error where the squares can neither under- nor overflow; if any length
+    falls outside :data:`SAFE`, all of them are ``np.hypot(x, y)``: one formula for every edge.
     """
     m = len(v) if closed else len(v) - 2  # the turns
     L, safe = np.empty(m + 1), True
@@ -93,6 +94,7 @@ def edge_lengths(v, closed):
             for start, stop in blocks(m) or [(0, 0)]:
                 x, y = _edges(v, start, stop, closed)
                 np.hypot(x, y, out=L[start:stop + 1])
+            safe = bool(SAFE[0] < L.min() and L.max() < SAFE[1])  # (hypot may round back into SAFE)
     return L, safe
 
 
@@ -134,7 +136,8 @@ def unit(vectors, norms):
 
 def tan_half_turn(X, Y, L, out, safe=None):
     """``tan(psi / 2)`` for the clockwise turn ``psi`` from each edge to the next, into ``out``;
-    returns the turns within about 7 degrees of ``pi``, for :func:`turns` to compute exactly.
+    returns the indices of the turns within about 7 degrees of ``pi``, for :func:`turns` to compute
+    exactly.
 
     ``X``, ``Y`` are the edges' components and ``L`` their lengths: turn ``j`` is from
     ``a = (X, Y)[j]`` to ``b = (X, Y)[j + 1]``. With ``|a||b| sin psi = -(a x b)`` (clockwise is
@@ -146,8 +149,10 @@ def tan_half_turn(X, Y, L, out, safe=None):
     neither cancels in its half but for the cross product, which near a turn straight back is a
     difference of two nearly equal products: those turns, where ``|a x b| < |a||b| / 8`` and
     ``a . b < 0``, are returned. Unless ``safe`` (every length lies in :data:`SAFE`; ``None``: look),
-    each row is first scaled by a power of two (exactly), so that no product under- or overflows
-    and the result is the same at every scale.
+    each row is first scaled by a power of two (exactly), so that no product under- or overflows.
+    (Where every length lies in ``SAFE`` a product of two components can still underflow, if one
+    component is far smaller than its edge: then the turn differs from the same turn scaled by
+    2^k in its last bits, far within the bound :func:`turns` gives.)
     """
     ax, ay, bx, by, la, lb = X[:-1], Y[:-1], X[1:], Y[1:], L[:-1], L[1:]
     if not (safe if safe is not None else len(L) and SAFE[0] < L.min() and L.max() < SAFE[1]):
@@ -182,13 +187,13 @@ def sin_half(t, out=None):
 
 HALF_TURN = {"angle": lambda t, out: np.maximum(np.arctan(t, out=out), ABOVE_MINUS_PI / 2, out=out),
              "sine": sin_half, "tangent": lambda t, out: t}
-"""``psi/2`` (at least ``-pi/2`` and a rounding error: ``psi`` lies in ``(-pi, pi]``), ``sin(psi/2)``
-and ``tan(psi/2)`` from ``t = tan(psi/2)``: the first two written into ``out``, the last ``t`` itself."""
+"""``psi/2``, ``sin(psi/2)`` and ``tan(psi/2)`` from ``t = tan(psi/2)``: the first two written into
+``out``, the last ``t`` itself. ``psi/2`` is kept just above ``-pi/2``, so that ``psi`` lies in ``(-pi, pi]``."""
 
 
 def curvature(kind, t, L):
     """The curvature ``kind`` at each turn from ``t = tan(psi / 2)`` and the edge lengths ``L``, laid
-    out as :func:`turns` gives them: ``HALF_TURN[kind](t) / (A / 2)``, ``A / 2 = (L[j] + L[j + 1]) / 4``.
+    out as :func:`edge_lengths` gives them: ``HALF_TURN[kind](t) / (A / 2)``, ``A / 2 = (L[j] + L[j + 1]) / 4``.
     This is ``psi / A``, ``2 sin(psi/2) / A`` or ``2 tan(psi/2) / A`` (eqs. 1, 3, 4), to the last
     bit wherever ``A / 2`` and the edges' halves are normal floats (above 2.2e-308), as halving is
     exact there; ``L[j] + L[j + 1]`` cannot overflow (the curve's length is finite) and no ``2 psi``,

@@ -69,7 +69,7 @@
     return h - (2 * d * (ax - 2 * ay) + ((4 * d - ay) * ay + d * d)) / (2 * h);
   }
 
-  /* _numerics.tan_half_turn: tan(psi/2) for the clockwise turn from a[i] to b[i], the edges into and out
+  /* _numerics.turns and tan_half_turn: tan(psi/2) for the clockwise turn from a[i] to b[i], the edges into and out
    * of vertex v[first + i]. With |a||b| sin psi = -(a x b) and |a||b| cos psi = a . b:
    *   tan(psi/2) = -(a x b) / (|a||b| + a . b)  where a . b >= 0,  (|a||b| - a . b) / -(a x b)  where not.
    * Where an edge length lies outside SAFE each row is first scaled by a power of two (exact). Within

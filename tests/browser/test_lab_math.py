@@ -13,7 +13,7 @@ numpy's pairwise order for np.sum included, so the only differences are the last
 libraries' atan, sin and cos and the order of BLAS's dot products (a @ b), all well conditioned
 here. (Near a reversal tan(psi/2) is ill-conditioned in the
 vertices, but both compute it from the same bits by the same operations, so it agrees to the last
-bit; see ddg/_numerics.py tan_half_turn. Lengths outside _numerics.SAFE come from C's hypot, which
+bit; see ddg/_numerics.py turns. Lengths outside _numerics.SAFE come from C's hypot, which
 the lab computes as glibc does, numpy's on Linux: Math.hypot differs in the last bit, which a
 nearly straight vertex magnifies in length_gradient to 1e-10. The flow step's cos(psi/2) near a
 reversal is ill-conditioned too; on these polygons V8's atan and cos agree with glibc's to the

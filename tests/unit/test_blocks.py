@@ -69,10 +69,13 @@ def independently(v, closed):
 
 
 def one_formula(curve):
-    """Every edge length by the same formula: sqrt(x^2 + y^2) if all lie in _numerics.SAFE, else hypot."""
-    e, L = curve.edges, curve.edge_lengths
-    if (_numerics.SAFE[0] < L).all() and (L < _numerics.SAFE[1]).all():
-        return np.sqrt(e[:, 0] * e[:, 0] + e[:, 1] * e[:, 1])
+    """Every edge length by the same formula: sqrt(x^2 + y^2) if all of those lie in _numerics.SAFE,
+    else hypot."""
+    e = curve.edges
+    with np.errstate(all="ignore"):
+        fast = np.sqrt(e[:, 0] * e[:, 0] + e[:, 1] * e[:, 1])
+    if (_numerics.SAFE[0] < fast).all() and (fast < _numerics.SAFE[1]).all():
+        return fast
     return np.hypot(e[:, 0], e[:, 1])
 
 
@@ -119,11 +122,30 @@ def test_one_tiny_edge_anywhere_changes_how_every_length_is_computed(closed, tin
     same(everything(v, closed), want)
 
 
+def test_the_turns_are_scaled_as_the_final_lengths_say():
+    """An edge whose sqrt(x^2 + y^2) is 1e150 (outside SAFE) but whose hypot is just below (inside):
+    every length is then by hypot, and as they all lie in SAFE the turns are not rescaled, as the
+    lab's JavaScript does (a reviewer's case: rescaled, the turn at vertex 1 moved in its 15th digit)."""
+    v = np.array([[0, 0], [1e-149, 1e-160], [2e-149, 2.5e-160], [5.072945131968628e+149, 8.617727524587661e+149]])
+    curve = ddg.DiscreteCurve(v)
+    L = curve._L
+    assert L.max() < _numerics.SAFE[1] and np.array_equal(curve.edge_lengths, one_formula(curve))
+    e = curve.edges
+    X, Y, t = np.r_[e[-1:, 0], e[:, 0]], np.r_[e[-1:, 1], e[:, 1]], np.empty(len(v))
+    with np.errstate(all="ignore"):
+        near = _numerics.tan_half_turn(X, Y, L, out=t)  # deciding from the lengths themselves
+        t[near] = _numerics._exact_tan_half_turn(v, near)
+    assert 1 not in near and np.array_equal(curve.tan_half_psi, t)
+
+
 def test_numpy_set_to_raise_still_makes_a_curve():
-    """Underflow inside the exact turn (products below 2^-1000 of an edge) is not an error."""
+    """Underflow inside the exact turn (products below 2^-1000 of an edge), or in halving a subnormal
+    edge, is not an error."""
     with np.errstate(all="raise"):
         curve = ddg.DiscreteCurve([[0.1, 0.2], [1e300, 1], [0.3, 0.7]], closed=False)
         assert np.isfinite(curve.tan_half_psi).all() and len(curve.reversals) == 0
+        tiny = ddg.DiscreteCurve(np.array([[0, 0], [0, 1], [1, 1], [1, 0]]) * 1e-310)
+        assert (tiny.dual_lengths > 0).all() and tiny.turning_number == 1
 
 
 def test_a_tangent_curvature_whose_double_overflows_is_still_given():
