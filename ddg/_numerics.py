@@ -46,9 +46,10 @@ def previous(values):
 
 
 BLOCK = 1 << 15
-"""Turns per block in :func:`edge_lengths`, :func:`turns` and :func:`curvature`. numpy makes a pass over its arrays for
-each operation; over a block of 2^15 vertices (256 kB an array) those passes stay in the processor's
-cache, where passes over whole arrays of a million vertices would each go out to memory."""
+"""Turns per block in :func:`edge_lengths`, :func:`turns` and :func:`curvature`. numpy makes a pass
+over its arrays for each operation; over a block of 2^15 vertices (256 kB an array) those passes
+stay in the processor's cache, where passes over whole arrays of a million vertices would each go
+out to memory."""
 
 
 def blocks(n):
