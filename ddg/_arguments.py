@@ -10,7 +10,6 @@ import numpy as np
 from .errors import DegenerateCurveError, InputError, OutOfRangeError
 
 
-
 def choose(value, valid, what):
     """``value`` if it is one of ``valid``, else an ``InputError`` listing the choices."""
     if not isinstance(value, str) or value not in valid:
@@ -148,13 +147,11 @@ def values(data, name, what="vertex", columns=None, finite=True):
         if not np.isfinite(np.add.reduce(v, axis=None)):
             fine = np.isfinite(v)
             bad = np.flatnonzero(~(fine if fine.ndim == 1 else fine.all(axis=1)))
-            i = int(bad[0]) if len(bad) else -1  # -1: all finite, only their sum overflowed
-            if i < 0:
-                pass
-            elif raw.dtype.kind in "iu" or bool(np.isfinite(raw[i]).all()):  # long double, or a huge Python int
-                raise OutOfRangeError(say(i, f"value beyond the largest float (about 1.8e308): {raw[i]}"))
-            else:
-                raise InputError(say(i, f"NaN or infinite value: {v[i]}"))
+            row = int(bad[0]) if len(bad) else None  # None: all finite, only their sum overflowed
+            if row is not None and (raw.dtype.kind in "iu" or bool(np.isfinite(raw[row]).all())):  # long double, huge int
+                raise OutOfRangeError(say(row, f"value beyond the largest float (about 1.8e308): {raw[row]}"))
+            if row is not None:
+                raise InputError(say(row, f"NaN or infinite value: {v[row]}"))
     return v
 
 
@@ -187,7 +184,7 @@ def edges(v, lengths, length, closed, ok):
     finite (``lengths`` lie in ``_numerics.SAFE``)."""
     if ok and np.isfinite(length):
         return
-    require_finite(v, lambda i: f"vertex {i} has a NaN or infinite coordinate: {v[i]}")
+    points(v, "vertex")  # the check the curve left out (finite=False): a NaN or infinite vertex named
     if lengths.min() == 0.0:
         i = int(np.argmin(lengths))
         if closed and i == len(v) - 1:

@@ -53,8 +53,9 @@ out to memory."""
 
 
 def blocks(n):
-    """``(start, stop)`` of the consecutive blocks of at most :data:`BLOCK` that cover ``range(n)``."""
-    return [(start, min(start + BLOCK, n)) for start in range(0, n, BLOCK)]
+    """``(start, stop)`` of the consecutive blocks of at most :data:`BLOCK` turns that cover ``range(n)``;
+    ``[(0, 0)]`` for none (a two-vertex polyline: one edge, no turn)."""
+    return [(start, min(start + BLOCK, n)) for start in range(0, n, BLOCK)] or [(0, 0)]
 
 
 def _window(v, start, stop, closed):
@@ -84,7 +85,7 @@ def edge_lengths(v, closed):
     m = len(v) if closed else len(v) - 2  # the turns
     L, safe = np.empty(m + 1), True
     with np.errstate(all="ignore"):
-        for start, stop in blocks(m) or [(0, 0)]:  # (0, 0): the single edge of a two-vertex polyline
+        for start, stop in blocks(m):
             window = _window(v, start, stop, closed)
             squares = np.subtract(window[1:], window[:-1])  # the edges, then their components squared
             squares *= squares
@@ -92,7 +93,7 @@ def edge_lengths(v, closed):
             np.sqrt(block, out=block)
             safe &= bool(SAFE[0] < block.min() and block.max() < SAFE[1])
         if not safe:  # squares that under- or overflow (or a length of 0 or beyond the floats: refused)
-            for start, stop in blocks(m) or [(0, 0)]:
+            for start, stop in blocks(m):
                 x, y = _edges(v, start, stop, closed)
                 np.hypot(x, y, out=L[start:stop + 1])
             safe = bool(SAFE[0] < L.min() and L.max() < SAFE[1])  # (hypot may round back into SAFE)
@@ -211,7 +212,7 @@ def curvature(kind, t, L):
 
 
 def _exact_tan_half_turn(v, at):
-    """``tan(psi / 2)`` at the vertices ``at`` of ``v``, its cross product exact (see :func:`tan_half_turn`)."""
+    """``tan(psi / 2)`` at the vertices ``at`` of ``v``, its cross product exact (see :func:`turns`)."""
     n = len(v)
     p, q, r = v[(at - 1) % n], v[at], v[(at + 1) % n]
     a, da = _two_difference(q, p)  # the edges: a + da = q - p and b + db = r - q exactly
