@@ -117,7 +117,9 @@ def turns(v, closed, L, safe):
             x, y = _edges(v, start, stop, closed)
             near.append(start + tan_half_turn(x, y, L[start:stop + 1], out=t[start:stop], safe=safe))
         at = np.concatenate(near)
-        t[at] = _exact_tan_half_turn(v, at if closed else at + 1)
+        for start in range(0, len(at), BLOCK):  # in blocks too: the exact sum holds 16 terms a turn
+            some = at[start:start + BLOCK]
+            t[some] = _exact_tan_half_turn(v, some if closed else some + 1)
     return t
 
 

@@ -13,6 +13,7 @@ import json
 import pathlib
 import re
 
+import numpy as np
 import pytest
 import shapely
 from catalogue import CATALOGUE, PAIRS, REFERENCE, SCALAR, as_float32, as_list, named, ref, solution_cells, starter_of, times
@@ -160,3 +161,30 @@ def test_measuring_instead_of_computing_is_refused_where_the_answer_runs():
     assert checks.run("minkowski_area", measured, 0, isolate=False)  # right values, measured
     feedback = checks.check_minkowski_area(measured, seed=0)
     assert not feedback and "measures what this exercise asks you to compute" in feedback.problem, feedback
+
+
+def test_a_nan_at_an_end_is_a_nan_not_a_forgotten_wrap_around():
+    """A new user's finding: a NaN at vertex 0 was said to be a forgotten wrap-around; a number off
+    there still is."""
+    def right(vertices):
+        v = np.asarray(vertices, dtype=float)
+        e = np.roll(v, -1, axis=0) - v
+        a = np.roll(e, 1, axis=0)
+        psi = np.arctan2(a[:, 1] * e[:, 0] - a[:, 0] * e[:, 1], (a * e).sum(axis=1))
+        return np.where(psi == -np.pi, np.pi, psi)
+
+    def last_off(vertices):
+        psi = right(vertices)
+        psi[-1] += 0.1
+        return psi
+
+    def first_nan(vertices):
+        psi = right(vertices)
+        psi[0] = np.nan
+        return psi
+
+    assert checks.run("turning_angles", right, 0, isolate=False)
+    off = checks.run("turning_angles", last_off, 0, isolate=False)
+    assert not off and "wrap-around is missing" in off.problem
+    nan = checks.run("turning_angles", first_nan, 0, isolate=False)
+    assert not nan and "NaN" in nan.problem and "wrap-around" not in nan.problem
